@@ -1,0 +1,36 @@
+#include "contours/Methods.h"
+
+namespace contour {
+
+const std::vector<Method>& contourMethods() {
+    static const std::vector<Method> methods{makeMeshContourMethod(),
+                                             makeInterpolatedContourMethod()};
+    return methods;
+}
+
+const Method* findMethod(const std::string& name) {
+    for (const Method& m : contourMethods())
+        if (m.name == name)
+            return &m;
+    return nullptr;
+}
+
+const std::vector<PlannedMethod>& plannedMethods() {
+    static const std::vector<PlannedMethod> planned{
+        {"consistent", "Consistent contours (Bénard et al. 2014)",
+         "not implemented yet: consistent contours need the smooth-surface layer (issue 3) and "
+         "the Bénard 2014 pipeline (issue 4)"},
+        {"powell-sabin", "Powell-Sabin contours (Capouellez et al. 2023)",
+         "not implemented yet: Powell-Sabin contours are planned after the consistent method"},
+    };
+    return planned;
+}
+
+const PlannedMethod* findPlannedMethod(const std::string& name) {
+    for (const PlannedMethod& m : plannedMethods())
+        if (m.name == name)
+            return &m;
+    return nullptr;
+}
+
+} // namespace contour

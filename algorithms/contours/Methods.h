@@ -1,0 +1,28 @@
+#pragma once
+// The registry of contour methods. The GUI's method selector, the CLI's
+// --method and the JSON report list methods from here.
+#include "pipeline/Method.h"
+
+#include <string>
+#include <vector>
+
+namespace contour {
+
+// Methods that run today: "mesh" and "interpolated".
+const std::vector<Method>& contourMethods();
+const Method* findMethod(const std::string& name);
+
+// Methods the workbench will offer but that are not implemented yet. Callers
+// must say so to the user (GUI: disabled entry with this reason; CLI: error).
+struct PlannedMethod {
+    std::string name;
+    std::string label;
+    std::string reason;
+};
+const std::vector<PlannedMethod>& plannedMethods();
+const PlannedMethod* findPlannedMethod(const std::string& name);
+
+Method makeMeshContourMethod();
+Method makeInterpolatedContourMethod();
+
+} // namespace contour

@@ -1,0 +1,28 @@
+#pragma once
+// OBJ and PLY writers. PLY can carry per-vertex and per-face integer labels
+// and scalar fields (each becomes a PLY property with its name). Files are
+// written to a temporary name and renamed, so a failure leaves nothing
+// half-written; failures throw std::runtime_error naming the file.
+#include "mesh/PolygonMesh.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace contour {
+
+struct PlyLabels {
+    std::map<std::string, std::vector<int>> vertexLabels;
+    std::map<std::string, std::vector<double>> vertexScalars;
+    std::map<std::string, std::vector<int>> faceLabels;
+    std::map<std::string, std::vector<double>> faceScalars;
+};
+
+void writeObj(const PolygonMesh& mesh, const std::string& path);
+void writeObj(const TriangleMesh& mesh, const std::string& path);
+void writePly(const PolygonMesh& mesh, const std::string& path, const PlyLabels& labels = {},
+              bool binary = false);
+void writePly(const TriangleMesh& mesh, const std::string& path, const PlyLabels& labels = {},
+              bool binary = false);
+
+} // namespace contour

@@ -1,0 +1,38 @@
+#pragma once
+// The polygon control cage, kept exactly as loaded (quads, n-gons, triangles).
+// Later issues subdivide it; the mesh and interpolated methods triangulate it.
+#include "mesh/TriangleMesh.h"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace contour {
+
+class PolygonMesh {
+public:
+    std::vector<Vec3> positions;
+    // Faces in compressed form: face f is indices[offsets[f] .. offsets[f+1]).
+    std::vector<Index> offsets{0};
+    std::vector<Index> indices;
+
+    Index vertexCount() const { return static_cast<Index>(positions.size()); }
+    Index faceCount() const { return static_cast<Index>(offsets.size()) - 1; }
+    std::span<const Index> face(Index f) const {
+        return {indices.data() + offsets[f], static_cast<size_t>(offsets[f + 1] - offsets[f])};
+    }
+    void addFace(std::span<const Index> polygon);
+    void addFace(std::initializer_list<Index> polygon) {
+        addFace(std::span<const Index>(polygon.begin(), polygon.size()));
+    }
+    bool isTriangleMesh() const;
+    bool isQuadMesh() const;
+    BoundingBox boundingBox() const;
+
+    // Triangulates each polygon: quads along their shorter diagonal (the
+    // split that bends the surface least), other polygons as a fan from their
+    // first corner. Each triangle remembers its source polygon.
+    TriangleMesh triangulate() const;
+};
+
+} // namespace contour

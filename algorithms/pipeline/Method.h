@@ -1,0 +1,66 @@
+#pragma once
+// A contour method: its parameters and its ordered phases (DESIGN.md, phase
+// model). The GUI and the CLI step every method the same way through Runner.
+#include "camera/Camera.h"
+#include "pipeline/Parameters.h"
+#include "pipeline/Snapshot.h"
+
+#include <atomic>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace contour {
+
+class PhaseCancelled : public std::runtime_error {
+public:
+    PhaseCancelled() : std::runtime_error("cancelled") {}
+};
+
+class PhaseContext {
+public:
+    PhaseContext(const Camera& analysisCamera, const ParameterSet& parameterValues,
+                 const std::atomic<bool>* cancelFlag = nullptr,
+                 std::function<void(double)> progress = {})
+        : camera(analysisCamera), parameters(parameterValues), cancelFlag_(cancelFlag),
+          progress_(std::move(progress)) {}
+
+    const Camera& camera;
+    const ParameterSet& parameters;
+
+    // Long phases call this between chunks of work.
+    void checkCancelled() const {
+        if (cancelFlag_ && cancelFlag_->load())
+            throw PhaseCancelled();
+    }
+    void reportProgress(double fraction) const {
+        if (progress_)
+            progress_(fraction);
+    }
+
+private:
+    const std::atomic<bool>* cancelFlag_;
+    std::function<void(double)> progress_;
+};
+
+struct Phase {
+    std::string name; // short, lower case: "facing", "extraction", "chaining"
+    std::string description;
+    // Reads and writes `snapshot`, a copy of the previous phase's snapshot.
+    std::function<void(const PhaseContext&, Snapshot&)> run;
+    // Post-conditions (the invariants of the notes), counted in every build.
+    std::function<std::vector<InvariantCheck>(const PhaseContext&, const Snapshot&)> postconditions;
+};
+
+struct Method {
+    std::string name;  // the CLI's --method value
+    std::string label; // for the GUI
+    std::string description;
+    std::vector<ParameterSpec> parameters;
+    std::vector<Phase> phases;
+
+    const ParameterSpec* parameter(const std::string& parameterName) const;
+};
+
+} // namespace contour

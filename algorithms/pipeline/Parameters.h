@@ -1,0 +1,62 @@
+#pragma once
+// A method's parameter schema and the values chosen for it. The GUI form, the
+// CLI flags and the JSON report are all generated from the schema.
+#include <nlohmann/json_fwd.hpp>
+
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace contour {
+
+using ParameterValue = std::variant<bool, int, double, std::string>;
+
+enum class ParameterType { Bool, Int, Double, Choice };
+
+struct ParameterSpec {
+    std::string name;  // kebab-case, also the CLI flag: --name
+    std::string label; // for the GUI form
+    std::string help;  // tooltip and --help text; cite the paper
+    ParameterType type = ParameterType::Double;
+    ParameterValue defaultValue;
+    double minimum = 0.0; // Int and Double only
+    double maximum = 0.0;
+    std::vector<std::string> choices; // Choice only
+};
+
+class ParameterSet {
+public:
+    ParameterSet() = default;
+    static ParameterSet defaults(const std::vector<ParameterSpec>& schema);
+
+    bool has(const std::string& name) const { return values_.count(name) != 0; }
+    const ParameterValue& value(const std::string& name) const;
+    void set(const std::string& name, ParameterValue value) { values_[name] = std::move(value); }
+
+    bool getBool(const std::string& name) const { return std::get<bool>(value(name)); }
+    int getInt(const std::string& name) const { return std::get<int>(value(name)); }
+    double getDouble(const std::string& name) const;
+    const std::string& getChoice(const std::string& name) const {
+        return std::get<std::string>(value(name));
+    }
+    const std::map<std::string, ParameterValue>& values() const { return values_; }
+
+    nlohmann::json toJson() const;
+
+private:
+    std::map<std::string, ParameterValue> values_;
+};
+
+// Parses text ("true", "3", "0.25", "area") into a value of the spec's type
+// and checks its range or choices. Throws std::invalid_argument with a message
+// naming the parameter, the text and the allowed range.
+ParameterValue parseParameter(const ParameterSpec& spec, const std::string& text);
+
+// Checks every value against the schema; returns one message per problem.
+std::vector<std::string> validateParameters(const std::vector<ParameterSpec>& schema,
+                                            const ParameterSet& values);
+
+std::string toString(const ParameterValue& value);
+
+} // namespace contour
