@@ -1,16 +1,17 @@
 #include "camera/Camera.h"
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
 
 namespace contour {
 
 namespace {
-double tanHalfFov(double fovYDegrees) { return std::tan(0.5 * fovYDegrees * std::numbers::pi / 180.0); }
+double tanHalfFov(double fovYDegrees) {
+    return std::tan(0.5 * fovYDegrees * std::numbers::pi / 180.0);
+}
 
 Vec3 readVec3(const nlohmann::json& j, const char* key) {
     if (!j.contains(key))
@@ -18,14 +19,21 @@ Vec3 readVec3(const nlohmann::json& j, const char* key) {
     const auto& a = j.at(key);
     if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() ||
         !a[2].is_number())
-        throw std::runtime_error(std::string("camera: \"") + key + "\" must be an array of 3 numbers");
+        throw std::runtime_error(std::string("camera: \"") + key +
+                                 "\" must be an array of 3 numbers");
     return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
 }
 } // namespace
 
-Vec3 Camera::forward() const { return (target - eye).normalized(); }
-Vec3 Camera::right() const { return forward().cross(up).normalized(); }
-Vec3 Camera::trueUp() const { return right().cross(forward()); }
+Vec3 Camera::forward() const {
+    return (target - eye).normalized();
+}
+Vec3 Camera::right() const {
+    return forward().cross(up).normalized();
+}
+Vec3 Camera::trueUp() const {
+    return right().cross(forward());
+}
 
 ProjectedPoint Camera::project(const Vec3& p) const {
     const Vec3 f = forward(), r = right(), u = r.cross(f);
@@ -105,8 +113,9 @@ Camera Camera::fromJson(const nlohmann::json& j) {
     else if (projection == "orthographic")
         c.projection = Projection::Orthographic;
     else
-        throw std::runtime_error("camera: \"projection\" must be \"perspective\" or \"orthographic\", not \"" +
-                                 projection + "\"");
+        throw std::runtime_error(
+            "camera: \"projection\" must be \"perspective\" or \"orthographic\", not \"" +
+            projection + "\"");
     c.eye = readVec3(j, "eye");
     c.target = readVec3(j, "target");
     c.up = j.contains("up") ? readVec3(j, "up") : Vec3(0, 1, 0);
@@ -124,7 +133,8 @@ Camera Camera::fromJson(const nlohmann::json& j) {
         const auto& v = j["viewport"];
         if (!v.is_object() || !v.value("width", nlohmann::json()).is_number_integer() ||
             !v.value("height", nlohmann::json()).is_number_integer())
-            throw std::runtime_error("camera: \"viewport\" must be {\"width\": int, \"height\": int}");
+            throw std::runtime_error(
+                "camera: \"viewport\" must be {\"width\": int, \"height\": int}");
         c.viewport = {v["width"].get<int>(), v["height"].get<int>()};
     }
     if (const std::string problem = c.validate(); !problem.empty())

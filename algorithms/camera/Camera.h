@@ -5,7 +5,6 @@
 #include "mesh/Types.h"
 
 #include <nlohmann/json_fwd.hpp>
-
 #include <string>
 #include <vector>
 

@@ -19,7 +19,9 @@ std::vector<Chain> chainSegments(const std::vector<ChainSegment>& segments, Inde
         incident[fill[segments[i].nodeA]++] = i;
         incident[fill[segments[i].nodeB]++] = i;
     }
-    const auto degree = [&](Index v) { return start[v + 1] - start[v]; };
+    const auto degree = [&](Index v) {
+        return start[v + 1] - start[v];
+    };
 
     std::vector<char> used(segments.size(), 0);
     std::vector<Chain> chains;

@@ -3,9 +3,8 @@
 #include "camera/Facing.h"
 #include "pipeline/FieldNames.h"
 
-#include <tbb/parallel_for.h>
-
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace contour {
 
@@ -42,8 +41,7 @@ Phase makeFacingPhase() {
     return {"facing",
             "Per-face facing for the analysis camera, from the exact orientation of the camera "
             "against each triangle's plane.",
-            publishFaceFacing,
-            [](const PhaseContext&, const Snapshot& s) {
+            publishFaceFacing, [](const PhaseContext&, const Snapshot& s) {
                 InvariantCheck all{"every face has a facing label", 0, ""};
                 const Field* f = s.field(fields::kFacing);
                 if (!f || !f->labels() ||

@@ -1,19 +1,18 @@
 // Interpolated contours (tutorial §6.2, Hertzmann & Zorin 2000): the zero set
 // of g = (c - p) · n interpolated linearly over each triangle from its
 // vertices, one segment per face, chained across shared edges.
+#include "camera/Facing.h"
 #include "contours/BoundaryCurves.h"
 #include "contours/ContourChaining.h"
 #include "contours/FacingPhase.h"
 #include "contours/Methods.h"
-#include "camera/Facing.h"
 #include "mesh/VertexNormals.h"
 #include "pipeline/FieldNames.h"
-
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <limits>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace contour {
 
@@ -21,7 +20,9 @@ namespace {
 
 // Generic position (§6.2 step 2) assumes g != 0 at vertices; a vertex with
 // g exactly 0 counts as back-facing, the same rule as edge-on faces.
-bool isFront(double g) { return g > 0.0; }
+bool isFront(double g) {
+    return g > 0.0;
+}
 
 // Tutorial §6.2 steps 1-2: vertex normals, then g per vertex.
 void computeVertexFacing(const PhaseContext& ctx, Snapshot& s) {
@@ -38,10 +39,12 @@ void computeVertexFacing(const PhaseContext& ctx, Snapshot& s) {
         front += isFront(x);
         zero += x == 0.0;
     }
-    s.setField(fields::kVertexNormal, {FieldLocation::Vertex, std::move(normals),
-                                       "unit vertex normal (" + ctx.parameters.getChoice("normal-weighting") +
-                                           "-weighted average of face normals)"});
-    s.setField(fields::kG, {FieldLocation::Vertex, std::move(g), "g = (c - p) · n, > 0 front-facing"});
+    s.setField(fields::kVertexNormal,
+               {FieldLocation::Vertex, std::move(normals),
+                "unit vertex normal (" + ctx.parameters.getChoice("normal-weighting") +
+                    "-weighted average of face normals)"});
+    s.setField(fields::kG,
+               {FieldLocation::Vertex, std::move(g), "g = (c - p) · n, > 0 front-facing"});
     s.setCounter("front vertices", static_cast<double>(front));
     s.setCounter("back vertices", static_cast<double>(mesh.vertexCount() - front));
     s.setCounter("vertices with g = 0", static_cast<double>(zero));
@@ -201,21 +204,34 @@ Method makeInterpolatedContourMethod() {
     m.description = "Zero set of g = (c - p) · n interpolated linearly from vertex normals "
                     "(tutorial §6.2, Hertzmann & Zorin 2000).";
     m.parameters = {
-        {"normal-weighting", "Vertex normal weights",
+        {"normal-weighting",
+         "Vertex normal weights",
          "How face normals are averaged into vertex normals: area (tutorial §6.2.1), angle, or "
          "Max (1999).",
-         ParameterType::Choice, std::string("area"), 0, 0, {"area", "angle", "max"}},
-        {"include-boundaries", "Include boundaries", "Also extract boundary edges as curves (tutorial §3.2).",
-         ParameterType::Bool, true, 0, 0, {}},
+         ParameterType::Choice,
+         std::string("area"),
+         0,
+         0,
+         {"area", "angle", "max"}},
+        {"include-boundaries",
+         "Include boundaries",
+         "Also extract boundary edges as curves (tutorial §3.2).",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}},
     };
     m.phases = {
         {"facing", "Vertex normals, g = (c - p) · n at every vertex, and each face's facing.",
          computeVertexFacing, checkVertexFacing},
-        {"extraction", "Zero crossings of g on edges (t = g_i / (g_i - g_j)); one segment per face "
-                       "with two crossings.",
+        {"extraction",
+         "Zero crossings of g on edges (t = g_i / (g_i - g_j)); one segment per face "
+         "with two crossings.",
          extractZeroCrossings, checkZeroCrossings},
-        {"chaining", "Chain segments across shared edges: closed loops on closed meshes, open at "
-                     "boundaries.",
+        {"chaining",
+         "Chain segments across shared edges: closed loops on closed meshes, open at "
+         "boundaries.",
          chainSegmentsAcrossEdges, checkChains},
     };
     return m;

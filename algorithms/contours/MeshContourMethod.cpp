@@ -7,9 +7,8 @@
 #include "geometry/Predicates.h"
 #include "pipeline/FieldNames.h"
 
-#include <tbb/parallel_for.h>
-
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace contour {
 
@@ -55,7 +54,8 @@ void extractContourEdges(const PhaseContext& ctx, Snapshot& s) {
         std::vector<int> boundary(mesh.edgeCount(), 0);
         for (Index e : boundaryEdges(mesh))
             boundary[e] = 1;
-        s.setField(fields::kBoundaryEdge, {FieldLocation::Edge, std::move(boundary), "1 on a boundary edge"});
+        s.setField(fields::kBoundaryEdge,
+                   {FieldLocation::Edge, std::move(boundary), "1 on a boundary edge"});
     }
     s.setCounter("boundary edges", mesh.boundaryEdgeCount());
 }
@@ -70,8 +70,9 @@ std::vector<InvariantCheck> checkContourEdges(const PhaseContext&, const Snapsho
     for (Index e = 0; e < mesh.edgeCount(); ++e) {
         const Index h = mesh.edgeHalfedge(e);
         const bool isContour = label[e] != kNotContour;
-        const bool differs = !mesh.isBoundary(h) && (facing[TriangleMesh::face(h)] > 0) !=
-                                                        (facing[TriangleMesh::face(mesh.opposite(h))] > 0);
+        const bool differs =
+            !mesh.isBoundary(h) && (facing[TriangleMesh::face(h)] > 0) !=
+                                       (facing[TriangleMesh::face(mesh.opposite(h))] > 0);
         if (isContour != differs && separates.violations++ == 0)
             separates.firstExample = "edge " + std::to_string(e);
         if (isContour) {
@@ -163,17 +164,29 @@ Method makeMeshContourMethod() {
     m.description = "Edges between front-facing and back-facing triangles of the mesh "
                     "(tutorial §3.4), classified convex or concave (appendix B).";
     m.parameters = {
-        {"include-boundaries", "Include boundaries", "Also extract boundary edges as curves (tutorial §3.2).",
-         ParameterType::Bool, true, 0, 0, {}},
-        {"drop-concave", "Drop concave contours",
+        {"include-boundaries",
+         "Include boundaries",
+         "Also extract boundary edges as curves (tutorial §3.2).",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}},
+        {"drop-concave",
+         "Drop concave contours",
          "Leave concave contour edges out of the chains: they are never visible (tutorial "
          "appendix B, theorem B.0.1).",
-         ParameterType::Bool, false, 0, 0, {}},
+         ParameterType::Bool,
+         false,
+         0,
+         0,
+         {}},
     };
     m.phases = {
         makeFacingPhase(),
-        {"extraction", "Contour edges (front face next to back face) and boundary edges; "
-                       "convex/concave classification with an exact predicate.",
+        {"extraction",
+         "Contour edges (front face next to back face) and boundary edges; "
+         "convex/concave classification with an exact predicate.",
          extractContourEdges, checkContourEdges},
         {"chaining", "Chain contour edges into polylines through vertices of degree two.",
          chainContourEdges, checkChains},

@@ -9,9 +9,13 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using ExactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
 
-Kernel::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Kernel::Point_3 point(const Vec3& p) {
+    return {p.x(), p.y(), p.z()};
+}
 
-int toInt(CGAL::Sign s) { return s == CGAL::POSITIVE ? 1 : s == CGAL::NEGATIVE ? -1 : 0; }
+int toInt(CGAL::Sign s) {
+    return s == CGAL::POSITIVE ? 1 : s == CGAL::NEGATIVE ? -1 : 0;
+}
 } // namespace
 
 int frontSide(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {

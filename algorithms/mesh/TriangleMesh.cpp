@@ -87,7 +87,9 @@ Vec3 TriangleMesh::faceAreaNormal(Index f) const {
     return (positions_[t[1]] - positions_[t[0]]).cross(positions_[t[2]] - positions_[t[0]]);
 }
 
-Vec3 TriangleMesh::faceNormal(Index f) const { return faceAreaNormal(f).normalized(); }
+Vec3 TriangleMesh::faceNormal(Index f) const {
+    return faceAreaNormal(f).normalized();
+}
 
 BoundingBox TriangleMesh::boundingBox() const {
     BoundingBox box;

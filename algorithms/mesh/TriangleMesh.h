@@ -58,7 +58,7 @@ public:
         return o;
     }
 
-    Vec3 faceNormal(Index f) const; // unit
+    Vec3 faceNormal(Index f) const;     // unit
     Vec3 faceAreaNormal(Index f) const; // (b-a)x(c-a), length = 2 * area
     BoundingBox boundingBox() const;
     Index boundaryEdgeCount() const { return boundaryEdgeCount_; }

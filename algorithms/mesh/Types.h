@@ -1,7 +1,7 @@
 #pragma once
 // Basic types shared by every algorithm module.
 #include <Eigen/Core>
-
+#include <Eigen/Geometry> // cross products
 #include <cstdint>
 #include <limits>
 

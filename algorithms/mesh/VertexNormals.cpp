@@ -1,9 +1,8 @@
 #include "mesh/VertexNormals.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 #include <stdexcept>
+#include <tbb/parallel_for.h>
 
 namespace contour {
 

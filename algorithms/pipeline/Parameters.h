@@ -1,9 +1,8 @@
 #pragma once
 // A method's parameter schema and the values chosen for it. The GUI form, the
 // CLI flags and the JSON report are all generated from the schema.
-#include <nlohmann/json_fwd.hpp>
-
 #include <map>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <variant>
 #include <vector>

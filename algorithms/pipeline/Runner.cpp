@@ -52,8 +52,8 @@ bool Runner::step() {
     for (const InvariantCheck& check : next.invariants)
         if (check.violations > 0)
             throw PhaseError(phase.name, "post-condition \"" + check.name + "\" violated " +
-                                             std::to_string(check.violations) + " times (first: " +
-                                             check.firstExample + ")");
+                                             std::to_string(check.violations) +
+                                             " times (first: " + check.firstExample + ")");
 #endif
     snapshots_.push_back(std::move(next));
     return true;
@@ -66,7 +66,9 @@ bool Runner::back() {
     return true;
 }
 
-void Runner::reset() { snapshots_.resize(1); }
+void Runner::reset() {
+    snapshots_.resize(1);
+}
 
 void Runner::runTo(int completed) {
     if (completed < 0 || completed > phaseCount())

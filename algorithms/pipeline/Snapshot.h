@@ -60,7 +60,7 @@ struct Counter {
 };
 
 struct InvariantCheck {
-    std::string name;        // the post-condition, stated positively
+    std::string name; // the post-condition, stated positively
     long long violations = 0;
     std::string firstExample; // the first offending element, for the inspector
 };

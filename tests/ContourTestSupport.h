@@ -1,0 +1,53 @@
+#pragma once
+// Shared set-up for the contour suites: run a method to the end on a shape.
+#include "contours/Methods.h"
+#include "mesh/ProceduralShapes.h"
+#include "pipeline/Runner.h"
+
+#include <random>
+
+namespace contour::testing {
+
+inline Snapshot runMethod(const std::string& method, std::shared_ptr<const PolygonMesh> mesh,
+                          const Camera& camera, ParameterSet parameters = {}) {
+    const Method& m = *findMethod(method);
+    ParameterSet p = ParameterSet::defaults(m.parameters);
+    for (const auto& [name, value] : parameters.values())
+        p.set(name, value);
+    Runner runner(m, makeInputSnapshot(std::move(mesh)), camera, p);
+    runner.runToEnd();
+    return runner.current();
+}
+
+inline int contourLoops(const Snapshot& s, int* open = nullptr) {
+    int loops = 0, opened = 0;
+    for (const Polyline& line : *s.curves)
+        if (line.type == CurveType::Contour)
+            (line.closed ? loops : opened)++;
+    if (open)
+        *open = opened;
+    return loops;
+}
+
+// The 26-view protocol plus `randomViews` cameras from a fixed seed, on a
+// sphere of directions around the box at 1.2 to 3 diagonals.
+inline std::vector<Camera> protocolViews(const BoundingBox& box, int randomViews,
+                                         unsigned seed = 2014) {
+    std::vector<Camera> cameras = Camera::views26(box, Viewport{800, 600});
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0.0, 1.0);
+    std::uniform_real_distribution<double> d(1.2, 3.0);
+    for (int i = 0; i < randomViews; ++i) {
+        const Vec3 dir(n(rng), n(rng), n(rng));
+        Camera c = Camera::framing(box, dir, Viewport{800, 600});
+        c.eye = c.target + d(rng) * box.diagonal() * dir.normalized();
+        cameras.push_back(c);
+    }
+    return cameras;
+}
+
+inline std::shared_ptr<const PolygonMesh> shape(const std::string& name, int resolution) {
+    return std::make_shared<const PolygonMesh>(makeProceduralShape(name, resolution));
+}
+
+} // namespace contour::testing
