@@ -60,9 +60,9 @@ private slots:
     void closedMeshesGiveClosedLoops_data() {
         QTest::addColumn<QString>("shapeName");
         QTest::addColumn<int>("view");
-        for (const char* name : {"sphere", "ellipsoid", "torus", "bumpy-torus", "two-spheres"})
+        for (const QString name : {"sphere", "ellipsoid", "torus", "bumpy-torus", "two-spheres"})
             for (int v = 0; v < 26 + kRandomViews; ++v)
-                QTest::addRow("%s view %d", name, v) << QString(name) << v;
+                QTest::addRow("%s view %d", qPrintable(name), v) << name << v;
     }
     void closedMeshesGiveClosedLoops() {
         QFETCH(QString, shapeName);
@@ -88,13 +88,33 @@ private slots:
         checkCrossings(s, camera);
     }
 
+    // Vertex normals are view-independent: two views of one mesh share them,
+    // another weighting or another mesh does not.
+    void normalsAreSharedAcrossViews() {
+        const auto mesh = shape("torus", 32);
+        const auto views = protocolViews(mesh->boundingBox(), 0);
+        const Method& m = *findMethod("interpolated");
+        const Snapshot input = makeInputSnapshot(mesh);
+        const auto normalsFor = [&](const Camera& camera, const std::string& weighting) {
+            ParameterSet p = ParameterSet::defaults(m.parameters);
+            p.set("normal-weighting", weighting);
+            Runner r(m, input, camera, p);
+            r.step();
+            return r.current().fields.at(fields::kVertexNormal);
+        };
+        const auto a = normalsFor(views[0], "area");
+        QVERIFY(normalsFor(views[5], "area") == a);
+        QVERIFY(normalsFor(views[5], "angle") != a);
+        QVERIFY(runMethod("interpolated", mesh, views[0]).fields.at(fields::kVertexNormal) != a);
+    }
+
     // The torus (axis z) seen from the side: two loops, for every weighting.
     void torusFromTheSide_data() {
         QTest::addColumn<QString>("weighting");
         QTest::addColumn<bool>("orthographic");
-        for (const char* w : {"area", "angle", "max"}) {
-            QTest::addRow("%s perspective", w) << QString(w) << false;
-            QTest::addRow("%s orthographic", w) << QString(w) << true;
+        for (const QString w : {"area", "angle", "max"}) {
+            QTest::addRow("%s perspective", qPrintable(w)) << w << false;
+            QTest::addRow("%s orthographic", qPrintable(w)) << w << true;
         }
     }
     void torusFromTheSide() {

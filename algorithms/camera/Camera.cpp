@@ -1,5 +1,7 @@
 #include "camera/Camera.h"
 
+#include "io/AtomicFile.h"
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -160,15 +162,7 @@ Camera Camera::readJson(const std::string& path) {
 }
 
 void Camera::writeJson(const std::string& path) const {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp);
-        out << toJson().dump(2) << '\n';
-        if (!out)
-            throw std::runtime_error(path + ": cannot write camera file");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw std::runtime_error(path + ": cannot move the camera file into place");
+    writeFileAtomically(path, toJson().dump(2) + "\n");
 }
 
 Camera Camera::framing(const BoundingBox& box, const Vec3& direction, const Viewport& viewport) {

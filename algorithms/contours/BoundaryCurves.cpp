@@ -6,6 +6,8 @@ namespace contour {
 
 std::vector<Index> boundaryEdges(const TriangleMesh& mesh) {
     std::vector<Index> edges;
+    if (mesh.boundaryEdgeCount() == 0)
+        return edges;
     edges.reserve(mesh.boundaryEdgeCount());
     for (Index e = 0; e < mesh.edgeCount(); ++e)
         if (mesh.isBoundaryEdge(e))

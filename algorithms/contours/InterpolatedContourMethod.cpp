@@ -6,6 +6,7 @@
 #include "contours/ContourChaining.h"
 #include "contours/FacingPhase.h"
 #include "contours/Methods.h"
+#include "contours/VertexNormalCache.h"
 #include "mesh/VertexNormals.h"
 #include "pipeline/FieldNames.h"
 
@@ -27,8 +28,9 @@ bool isFront(double g) {
 // Tutorial §6.2 steps 1-2: vertex normals, then g per vertex.
 void computeVertexFacing(const PhaseContext& ctx, Snapshot& s) {
     const TriangleMesh& mesh = *s.mesh;
-    std::vector<Vec3> normals =
-        vertexNormals(mesh, normalWeightingFromName(ctx.parameters.getChoice("normal-weighting")));
+    const std::shared_ptr<const Field> normalField = cachedVertexNormals(
+        s.mesh, normalWeightingFromName(ctx.parameters.getChoice("normal-weighting")));
+    const std::vector<Vec3>& normals = *normalField->vectors();
     ctx.checkCancelled();
     std::vector<double> g(mesh.vertexCount());
     tbb::parallel_for(Index(0), mesh.vertexCount(), [&](Index v) {
@@ -39,10 +41,7 @@ void computeVertexFacing(const PhaseContext& ctx, Snapshot& s) {
         front += isFront(x);
         zero += x == 0.0;
     }
-    s.setField(fields::kVertexNormal,
-               {FieldLocation::Vertex, std::move(normals),
-                "unit vertex normal (" + ctx.parameters.getChoice("normal-weighting") +
-                    "-weighted average of face normals)"});
+    s.fields[fields::kVertexNormal] = normalField;
     s.setField(fields::kG,
                {FieldLocation::Vertex, std::move(g), "g = (c - p) · n, > 0 front-facing"});
     s.setCounter("front vertices", static_cast<double>(front));

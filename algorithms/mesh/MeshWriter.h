@@ -3,20 +3,12 @@
 // and scalar fields (each becomes a PLY property with its name). Files are
 // written to a temporary name and renamed, so a failure leaves nothing
 // half-written; failures throw std::runtime_error naming the file.
+#include "mesh/PlyLabels.h"
 #include "mesh/PolygonMesh.h"
 
-#include <map>
 #include <string>
-#include <vector>
 
 namespace contour {
-
-struct PlyLabels {
-    std::map<std::string, std::vector<int>> vertexLabels;
-    std::map<std::string, std::vector<double>> vertexScalars;
-    std::map<std::string, std::vector<int>> faceLabels;
-    std::map<std::string, std::vector<double>> faceScalars;
-};
 
 void writeObj(const PolygonMesh& mesh, const std::string& path);
 void writeObj(const TriangleMesh& mesh, const std::string& path);

@@ -1,0 +1,183 @@
+#include "export/JsonReport.h"
+
+#include "io/AtomicFile.h"
+#include "export/ProjectedCurves.h"
+
+#include <cmath>
+
+namespace contour {
+
+namespace {
+
+nlohmann::json vec3(const Vec3& v) {
+    return {v.x(), v.y(), v.z()};
+}
+
+// Counters are doubles; most are counts, which read better as integers.
+nlohmann::json counterValue(double value) {
+    if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 9.0e15)
+        return static_cast<long long>(value);
+    return value;
+}
+
+nlohmann::json meshJson(const std::string& path, const Snapshot& input) {
+    nlohmann::json j;
+    j["path"] = path;
+    if (input.cage) {
+        const PolygonMesh& cage = *input.cage;
+        long long polygons = 0;
+        for (Index f = 0; f < cage.faceCount(); ++f)
+            polygons += cage.face(f).size() > 3;
+        j["vertices"] = cage.vertexCount();
+        j["faces"] = cage.faceCount();
+        j["polygon_faces"] = polygons;
+    }
+    if (input.mesh) {
+        const TriangleMesh& mesh = *input.mesh;
+        if (!input.cage) {
+            j["vertices"] = mesh.vertexCount();
+            j["faces"] = mesh.faceCount();
+            j["polygon_faces"] = 0;
+        }
+        j["triangles"] = mesh.faceCount();
+        j["edges"] = mesh.edgeCount();
+        j["boundary_edges"] = mesh.boundaryEdgeCount();
+        const BoundingBox box = mesh.boundingBox();
+        if (!box.isEmpty())
+            j["bounding_box"] = {{"min", vec3(box.min)}, {"max", vec3(box.max)}};
+    }
+    return j;
+}
+
+} // namespace
+
+nlohmann::json phaseJson(const Phase& phase, const Snapshot& snapshot, const Snapshot& previous) {
+    nlohmann::json j;
+    j["index"] = snapshot.phaseIndex;
+    j["name"] = phase.name;
+    j["description"] = phase.description;
+    j["seconds"] = snapshot.phaseSeconds;
+    nlohmann::json counters = nlohmann::json::object();
+    for (const Counter& c : snapshot.counters) {
+        const double before = previous.counter(c.name, std::nan(""));
+        if (!(before == c.value))
+            counters[c.name] = counterValue(c.value);
+    }
+    j["counters"] = std::move(counters);
+    nlohmann::json invariants = nlohmann::json::array();
+    for (const InvariantCheck& check : snapshot.invariants)
+        invariants.push_back({{"name", check.name},
+                              {"violations", check.violations},
+                              {"first_example", check.firstExample}});
+    j["invariants"] = std::move(invariants);
+    j["violations"] = snapshot.invariantViolations();
+    j["notes"] = snapshot.notes;
+    return j;
+}
+
+namespace {
+nlohmann::json curvesJson(const std::vector<ProjectedPolyline>& projected) {
+    nlohmann::json curves = nlohmann::json::array();
+    for (const ProjectedPolyline& p : projected)
+        curves.push_back({{"index", p.index},
+                          {"type", toString(p.type)},
+                          {"closed", p.closed},
+                          {"points", p.pointCount},
+                          {"length_px", p.lengthPixels},
+                          {"pieces", p.pieces.size()},
+                          {"hidden_points", p.hiddenPoints}});
+    return curves;
+}
+} // namespace
+
+nlohmann::json curvesJson(const Snapshot& snapshot, const Camera& camera) {
+    if (!snapshot.curves)
+        return nlohmann::json::array();
+    return curvesJson(projectCurves(*snapshot.curves, camera));
+}
+
+JsonReport::JsonReport(const std::string& toolName, const std::string& toolVersion,
+                       const std::string& meshPath, const Snapshot& input, const Method& method,
+                       const ParameterSet& parameters)
+    : method_(&method) {
+    report_["tool"] = {{"name", toolName}, {"version", toolVersion}};
+    report_["mesh"] = meshJson(meshPath, input);
+    nlohmann::json phases = nlohmann::json::array();
+    for (const Phase& phase : method.phases)
+        phases.push_back(phase.name);
+    report_["method"] = {{"name", method.name},
+                         {"label", method.label},
+                         {"parameters", parameters.toJson()},
+                         {"phases", std::move(phases)}};
+    report_["views"] = nlohmann::json::array();
+}
+
+void JsonReport::addView(const Camera& camera, const std::vector<Snapshot>& snapshots) {
+    nlohmann::json view;
+    view["index"] = report_["views"].size();
+    view["camera"] = camera.toJson();
+    const int completed = snapshots.empty() ? 0 : static_cast<int>(snapshots.size()) - 1;
+    view["completed_phases"] = completed;
+    view["phase_count"] = method_->phases.size();
+
+    nlohmann::json phases = nlohmann::json::array();
+    double seconds = 0.0;
+    long long violations = 0;
+    for (int i = 1; i <= completed; ++i) {
+        const Snapshot& s = snapshots[static_cast<size_t>(i)];
+        phases.push_back(phaseJson(method_->phases.at(static_cast<size_t>(i - 1)), s,
+                                   snapshots[static_cast<size_t>(i - 1)]));
+        seconds += s.phaseSeconds;
+        violations += s.invariantViolations();
+    }
+    view["phases"] = std::move(phases);
+
+    nlohmann::json totals;
+    totals["seconds"] = seconds;
+    totals["invariant_violations"] = violations;
+    long long chains = 0, loops = 0, boundaries = 0, contourPoints = 0, clipped = 0, curveCount = 0;
+    double contourLength = 0.0, boundaryLength = 0.0;
+    nlohmann::json curves = nlohmann::json::array();
+    nlohmann::json counters = nlohmann::json::object();
+    if (!snapshots.empty()) {
+        const Snapshot& last = snapshots.back();
+        if (last.curves) {
+            const std::vector<ProjectedPolyline> projected = projectCurves(*last.curves, camera);
+            for (const ProjectedPolyline& p : projected) {
+                ++curveCount;
+                clipped += p.clipped();
+                if (p.type == CurveType::Contour) {
+                    ++chains;
+                    loops += p.closed;
+                    contourPoints += static_cast<long long>(p.pointCount);
+                    contourLength += p.lengthPixels;
+                } else if (p.type == CurveType::Boundary) {
+                    ++boundaries;
+                    boundaryLength += p.lengthPixels;
+                }
+            }
+            curves = curvesJson(projected);
+        }
+        for (const Counter& c : last.counters)
+            counters[c.name] = counterValue(c.value);
+    }
+    totals["curves"] = curveCount;
+    totals["contour_chains"] = chains;
+    totals["closed_loops"] = loops;
+    totals["open_chains"] = chains - loops;
+    totals["boundary_curves"] = boundaries;
+    totals["contour_points"] = contourPoints;
+    totals["contour_length_px"] = contourLength;
+    totals["boundary_length_px"] = boundaryLength;
+    totals["clipped_curves"] = clipped;
+    totals["counters"] = std::move(counters);
+    view["totals"] = std::move(totals);
+    view["curves"] = std::move(curves);
+    report_["views"].push_back(std::move(view));
+}
+
+void JsonReport::write(const std::string& path) const {
+    writeFileAtomically(path, text());
+}
+
+} // namespace contour

@@ -1,0 +1,68 @@
+#pragma once
+// The JSON report of a batch run: what was run, on what, from where, and what
+// every phase did. One report covers one mesh and one method with its
+// parameters, run from one or more cameras ("views"):
+//
+// {
+//   "tool":   {"name", "version"},
+//   "mesh":   {"path", "vertices", "faces" (as loaded), "polygon_faces" (faces
+//              with more than three corners), "triangles" (after
+//              triangulation), "edges", "boundary_edges", "bounding_box"},
+//   "method": {"name", "label", "parameters" (ParameterSet::toJson),
+//              "phases" (the method's phase names, in order)},
+//   "views": [{
+//     "index", "camera" (Camera::toJson),
+//     "completed_phases", "phase_count",
+//     "phases": [{"index", "name", "description", "seconds",
+//                 "counters" {name: value; the counters this phase set or changed},
+//                 "invariants" [{"name", "violations", "first_example"}],
+//                 "violations", "notes" [text]}],
+//     "totals": {"seconds", "invariant_violations", "curves", "contour_chains",
+//                "closed_loops", "open_chains", "boundary_curves",
+//                "contour_points", "contour_length_px", "boundary_length_px",
+//                "clipped_curves", "counters" (every counter of the last snapshot)},
+//     "curves": [{"index", "type", "closed", "points", "length_px", "pieces",
+//                 "hidden_points"}]
+//   }]
+// }
+//
+// Lengths are in pixels of the view's viewport, measured on the projected
+// curve (ProjectedCurves.h: parts behind a perspective eye are not counted).
+#include "camera/Camera.h"
+#include "pipeline/Method.h"
+#include "pipeline/Snapshot.h"
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace contour {
+
+// The per-phase entry: `snapshot` is the state after the phase, `previous`
+// the one before it (to tell which counters the phase set).
+nlohmann::json phaseJson(const Phase& phase, const Snapshot& snapshot, const Snapshot& previous);
+// The per-curve summary of a snapshot seen by `camera`.
+nlohmann::json curvesJson(const Snapshot& snapshot, const Camera& camera);
+
+class JsonReport {
+public:
+    // `input` is the method's input snapshot (makeInputSnapshot).
+    JsonReport(const std::string& toolName, const std::string& toolVersion,
+               const std::string& meshPath, const Snapshot& input, const Method& method,
+               const ParameterSet& parameters);
+
+    // Adds one camera's run: `snapshots[0]` is the input, `snapshots[i]` the
+    // state after phase i (Runner::snapshots()).
+    void addView(const Camera& camera, const std::vector<Snapshot>& snapshots);
+
+    const nlohmann::json& json() const { return report_; }
+    std::string text() const { return report_.dump(2) + "\n"; }
+    // Writes text() atomically; throws std::runtime_error naming the file.
+    void write(const std::string& path) const;
+
+private:
+    const Method* method_;
+    nlohmann::json report_;
+};
+
+} // namespace contour

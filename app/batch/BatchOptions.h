@@ -1,0 +1,56 @@
+#pragma once
+// The command line of contour-batch: declared with CLI11, one flag per method
+// parameter generated from the registered methods' schemas (Parameters.h),
+// and checked into a BatchOptions.
+#include "camera/Camera.h"
+#include "pipeline/Method.h"
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace contour::batch {
+
+// Bad arguments: exit code 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Camera settings given on the command line; each one overrides the default
+// framing camera (or is an error with --camera/--views26, see BatchOptions.cpp).
+struct CameraOverrides {
+    std::optional<Vec3> eye, target, up;
+    std::optional<double> fovYDegrees, orthoHeight;
+    bool orthographic = false;
+    std::optional<int> width, height;
+};
+
+struct BatchOptions {
+    bool listMethods = false;
+    std::string meshPath;
+    const Method* method = nullptr;
+    ParameterSet parameters;
+    std::string cameraFile;
+    CameraOverrides camera;
+    bool views26 = false;
+    std::optional<int> phases; // stop after this many phases; all when empty
+    std::string svgPath, jsonPath, writeCameraPath;
+};
+
+enum class ParseStatus { Run, Exit };
+struct ParseResult {
+    ParseStatus status = ParseStatus::Run;
+    int exitCode = 0; // when status == Exit (--help, --version)
+    BatchOptions options;
+};
+
+// Parses argv. Help and version print to stdout and return Exit with code 0.
+// Every problem (unknown option, bad number, unknown method, parameter of
+// another method, bad value) throws UsageError naming the option.
+ParseResult parseBatchOptions(int argc, const char* const* argv);
+
+// "1,2.5,-3" -> Vec3; throws UsageError naming `option` on anything else.
+Vec3 parseVec3(const std::string& option, const std::string& text);
+
+} // namespace contour::batch

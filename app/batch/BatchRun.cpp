@@ -1,0 +1,203 @@
+#include "BatchRun.h"
+
+#include "Summary.h"
+#include "export/AtomicFile.h"
+#include "export/JsonReport.h"
+#include "export/SvgWriter.h"
+#include "mesh/MeshError.h"
+#include "mesh/MeshReader.h"
+#include "pipeline/Runner.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <vector>
+
+namespace contour::batch {
+
+namespace {
+
+// The default view: from the front-right, a little above (a 3/4 view).
+const Vec3 kDefaultViewDirection(1.0, 0.5, 2.0);
+
+Camera readCameraFile(const BatchOptions& o) {
+    Camera camera;
+    try {
+        camera = Camera::readJson(o.cameraFile);
+    } catch (const std::exception& e) {
+        throw BatchFailure(e.what());
+    }
+    if (o.camera.width)
+        camera.viewport.width = *o.camera.width;
+    if (o.camera.height)
+        camera.viewport.height = *o.camera.height;
+    return camera;
+}
+
+std::shared_ptr<const PolygonMesh> loadMesh(const std::string& path) {
+    try {
+        return std::make_shared<const PolygonMesh>(readMesh(path));
+    } catch (const MeshError& e) {
+        throw BatchFailure(e.what());
+    } catch (const std::exception& e) {
+        throw BatchFailure(path + ": " + e.what());
+    }
+}
+
+// Projection settings that apply to every camera, also the 26 views.
+void applyProjection(const CameraOverrides& c, Camera& camera) {
+    if (c.orthographic)
+        camera.projection = Projection::Orthographic;
+    if (c.fovYDegrees)
+        camera.fovYDegrees = *c.fovYDegrees;
+    if (c.orthoHeight)
+        camera.orthoHeight = *c.orthoHeight;
+}
+
+std::vector<Camera> placeCameras(const BatchOptions& o, const BoundingBox& box,
+                                 const Camera* fromFile) {
+    Viewport viewport;
+    viewport.width = o.camera.width.value_or(viewport.width);
+    viewport.height = o.camera.height.value_or(viewport.height);
+    std::vector<Camera> cameras;
+    if (o.views26) {
+        cameras = Camera::views26(box, viewport);
+        for (size_t i = 0; i < cameras.size(); ++i) {
+            applyProjection(o.camera, cameras[i]);
+            if (const std::string problem = cameras[i].validate(); !problem.empty())
+                throw BatchFailure(o.meshPath + ": view " + std::to_string(i) +
+                                   " of the 26-view protocol has no valid camera (" + problem +
+                                   "); is the mesh flat?");
+        }
+        return cameras;
+    }
+    if (fromFile)
+        return {*fromFile};
+    Camera camera = Camera::framing(box, kDefaultViewDirection, viewport);
+    if (o.camera.eye)
+        camera.eye = *o.camera.eye;
+    if (o.camera.target)
+        camera.target = *o.camera.target;
+    if (o.camera.up) {
+        camera.up = *o.camera.up;
+    } else {
+        // Without --up, keep the default up away from the viewing direction.
+        const Vec3 view = camera.target - camera.eye;
+        const double length = view.norm();
+        if (length > 0.0 && view.cross(camera.up).norm() < 1e-6 * length)
+            camera.up = Vec3(0, 0, 1);
+    }
+    applyProjection(o.camera, camera);
+    if (const std::string problem = camera.validate(); !problem.empty())
+        throw UsageError("camera: " + problem);
+    return {camera};
+}
+
+// Fails before any work when an output's folder does not exist.
+void checkOutputFolders(const BatchOptions& o) {
+    for (const std::string& path : {o.svgPath, o.jsonPath, o.writeCameraPath}) {
+        if (path.empty())
+            continue;
+        std::filesystem::path folder = std::filesystem::path(path).parent_path();
+        if (folder.empty())
+            folder = ".";
+        std::error_code error;
+        if (!std::filesystem::is_directory(folder, error))
+            throw BatchFailure(path + ": cannot write (the folder " + folder.string() +
+                               " does not exist)");
+    }
+}
+
+struct PendingFile {
+    std::string path;
+    std::string content;
+};
+
+} // namespace
+
+std::string viewOutputPath(const std::string& path, int view) {
+    const std::filesystem::path p(path);
+    const std::string number = (view < 10 ? "0" : "") + std::to_string(view);
+    std::filesystem::path name = p.stem();
+    name += "_view" + number;
+    name += p.extension();
+    return (p.parent_path() / name).string();
+}
+
+int runBatch(const BatchOptions& o, std::ostream& out) {
+    checkOutputFolders(o);
+    std::unique_ptr<Camera> fileCamera;
+    if (!o.cameraFile.empty())
+        fileCamera = std::make_unique<Camera>(readCameraFile(o));
+
+    const std::shared_ptr<const PolygonMesh> cage = loadMesh(o.meshPath);
+    Snapshot input;
+    try {
+        input = makeInputSnapshot(cage);
+    } catch (const std::exception& e) {
+        throw BatchFailure(o.meshPath + ": " + e.what());
+    }
+    const std::vector<Camera> cameras =
+        placeCameras(o, input.mesh->boundingBox(), fileCamera.get());
+
+    const Method& method = *o.method;
+    const int phases = o.phases.value_or(static_cast<int>(method.phases.size()));
+    printRunHeader(out, o.meshPath, input, method, o.parameters);
+
+    JsonReport report("contour-batch", CONTOUR_VERSION, o.meshPath, input, method, o.parameters);
+    std::vector<PendingFile> files;
+    const bool several = cameras.size() > 1;
+    for (size_t v = 0; v < cameras.size(); ++v) {
+        const Camera& camera = cameras[v];
+        const int view = static_cast<int>(v);
+        printViewHeader(out, view, static_cast<int>(cameras.size()), camera);
+        std::unique_ptr<Runner> runner;
+        try {
+            runner = std::make_unique<Runner>(method, input, camera, o.parameters);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(e.what());
+        }
+        while (runner->completedPhases() < phases) {
+            try {
+                runner->step();
+            } catch (const std::exception& e) {
+                out.flush();
+                throw BatchFailure((several ? "view " + std::to_string(view) + ": " : "") +
+                                   e.what());
+            }
+            const int done = runner->completedPhases();
+            printPhase(out, method, runner->snapshot(done), runner->snapshot(done - 1));
+        }
+        printViewTotals(out, runner->current(), camera);
+        report.addView(camera, runner->snapshots());
+        const std::string title = o.meshPath + " - " + method.label +
+                                  (several ? ", view " + std::to_string(view) : "") + ", after " +
+                                  runner->current().phaseName;
+        if (!o.svgPath.empty())
+            files.push_back({several ? viewOutputPath(o.svgPath, view) : o.svgPath,
+                             svgDocument(runner->current(), camera, {title, 1.5, true})});
+        if (!o.writeCameraPath.empty())
+            files.push_back({several ? viewOutputPath(o.writeCameraPath, view) : o.writeCameraPath,
+                             camera.toJson().dump(2) + "\n"});
+    }
+    if (!o.jsonPath.empty())
+        files.push_back({o.jsonPath, report.text()});
+
+    std::vector<std::string> written;
+    try {
+        for (const PendingFile& file : files) {
+            writeFileAtomically(file.path, file.content);
+            written.push_back(file.path);
+        }
+    } catch (const std::exception& e) {
+        // Leave no partial set of outputs behind either.
+        for (const std::string& path : written)
+            std::remove(path.c_str());
+        throw BatchFailure(e.what());
+    }
+    printWritten(out, written);
+    return 0;
+}
+
+} // namespace contour::batch

@@ -1,0 +1,623 @@
+// contour-batch end to end: runs the program with QProcess on procedural
+// meshes written to a temporary folder, and checks its SVG, its JSON report,
+// its summary, its exit codes and error messages, and that no output file is
+// left behind when it fails.
+#include "contours/Methods.h"
+#include "export/JsonReport.h"
+#include "export/SvgWriter.h"
+#include "mesh/ProceduralShapes.h"
+
+#include <QDir>
+#include <QFile>
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QXmlStreamReader>
+#include <QtTest>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+using namespace contour;
+
+namespace {
+
+const char* const kProgram = CONTOUR_BINARY_DIR "/app/batch/contour-batch";
+
+struct RunResult {
+    int exitCode = -1;
+    QString out;
+    QString err;
+};
+
+void writeObjFile(const PolygonMesh& mesh, const QString& path) {
+    std::ofstream out(path.toStdString());
+    char line[128];
+    for (const Vec3& p : mesh.positions) {
+        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+        out << line;
+    }
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+        out << "f";
+        for (Index v : mesh.face(f))
+            out << ' ' << v + 1;
+        out << '\n';
+    }
+    QVERIFY2(out.good(), qPrintable(path));
+}
+
+void writeText(const QString& path, const QByteArray& text) {
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write(text);
+}
+
+nlohmann::json readJson(const QString& path) {
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly))
+        return nullptr;
+    return nlohmann::json::parse(file.readAll().toStdString(), nullptr, false);
+}
+
+struct SvgPolyline {
+    QString group;
+    QString type;
+    bool closed = false;
+    int index = -1;
+    std::vector<Vec2> points;
+};
+
+struct SvgFile {
+    bool ok = false;
+    QString error;
+    int width = 0, height = 0;
+    QString viewBox;
+    QStringList groups;
+    std::vector<SvgPolyline> polylines;
+
+    int count(const QString& group) const {
+        int n = 0;
+        for (const SvgPolyline& p : polylines)
+            n += p.group == group;
+        return n;
+    }
+};
+
+SvgFile readSvg(const QString& path) {
+    SvgFile svg;
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) {
+        svg.error = "cannot open " + path;
+        return svg;
+    }
+    QXmlStreamReader xml(&file);
+    QString group;
+    while (!xml.atEnd()) {
+        xml.readNext();
+        if (xml.isStartElement()) {
+            const auto a = xml.attributes();
+            if (xml.name() == QLatin1String("svg")) {
+                svg.width = a.value("width").toInt();
+                svg.height = a.value("height").toInt();
+                svg.viewBox = a.value("viewBox").toString();
+            } else if (xml.name() == QLatin1String("g")) {
+                group = a.value("id").toString();
+                svg.groups << group;
+            } else if (xml.name() == QLatin1String("polyline")) {
+                SvgPolyline p;
+                p.group = group;
+                p.type = a.value("data-type").toString();
+                p.closed = a.value("data-closed") == QLatin1String("true");
+                p.index = a.value("data-index").toInt();
+                const QStringList pairs =
+                    a.value("points").toString().split(' ', Qt::SkipEmptyParts);
+                for (const QString& pair : pairs) {
+                    const QStringList xy = pair.split(',');
+                    bool okX = false, okY = false;
+                    if (xy.size() == 2)
+                        p.points.emplace_back(xy[0].toDouble(&okX), xy[1].toDouble(&okY));
+                    if (!okX || !okY) {
+                        svg.error = "bad point \"" + pair + "\"";
+                        return svg;
+                    }
+                }
+                svg.polylines.push_back(std::move(p));
+            }
+        } else if (xml.isEndElement() && xml.name() == QLatin1String("g")) {
+            group.clear();
+        }
+    }
+    if (xml.hasError()) {
+        svg.error = xml.errorString();
+        return svg;
+    }
+    svg.ok = true;
+    return svg;
+}
+
+double polylineLength(const std::vector<Vec2>& points) {
+    double length = 0.0;
+    for (size_t i = 1; i < points.size(); ++i)
+        length += (points[i] - points[i - 1]).norm();
+    return length;
+}
+
+QStringList filesIn(const QString& dir) {
+    return QDir(dir).entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot);
+}
+
+} // namespace
+
+class TestCli : public QObject {
+    Q_OBJECT
+
+private:
+    QTemporaryDir dir_;
+    QString sphere_; // closed: one contour loop from any outside view
+    QString saddle_; // open: one boundary loop
+    PolygonMesh sphereMesh_;
+
+    QString path(const QString& name) const { return dir_.filePath(name); }
+    // An empty folder for one run's outputs.
+    QString freshOutputDir(const QString& name) {
+        QDir d(path(name));
+        d.removeRecursively();
+        QDir().mkpath(d.path());
+        return d.path();
+    }
+
+    RunResult run(const QStringList& args, int timeoutMs = 120000) {
+        QProcess process;
+        process.start(kProgram, args);
+        RunResult r;
+        if (!process.waitForStarted()) {
+            r.err = "cannot start " + QString(kProgram);
+            return r;
+        }
+        if (!process.waitForFinished(timeoutMs)) {
+            process.kill();
+            process.waitForFinished();
+            r.err = "timed out";
+            return r;
+        }
+        r.out = QString::fromUtf8(process.readAllStandardOutput());
+        r.err = QString::fromUtf8(process.readAllStandardError());
+        r.exitCode = process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -2;
+        return r;
+    }
+
+private slots:
+    void initTestCase() {
+        QVERIFY2(QFile::exists(kProgram), kProgram);
+        QVERIFY(dir_.isValid());
+        sphereMesh_ = makeSphere(1.0, 32);
+        sphere_ = path("sphere.obj");
+        writeObjFile(sphereMesh_, sphere_);
+        saddle_ = path("saddle.obj");
+        writeObjFile(makeSaddlePatch(16), saddle_);
+    }
+
+    void helpAndMethodList() {
+        const RunResult help = run({"--help"});
+        QCOMPARE(help.exitCode, 0);
+        for (const Method& method : contourMethods())
+            for (const ParameterSpec& spec : method.parameters)
+                QVERIFY2(help.out.contains(QString::fromStdString("--" + spec.name)),
+                         spec.name.c_str());
+        QVERIFY(help.out.contains("--views26"));
+
+        const RunResult list = run({"--list-methods"});
+        QCOMPARE(list.exitCode, 0);
+        for (const Method& method : contourMethods()) {
+            QVERIFY(list.out.contains(QString::fromStdString(method.name)));
+            for (const Phase& phase : method.phases)
+                QVERIFY(list.out.contains(QString::fromStdString(phase.name)));
+        }
+        for (const PlannedMethod& planned : plannedMethods())
+            QVERIFY(list.out.contains(QString::fromStdString(planned.reason)));
+    }
+
+    void sphereGivesOneLoop_data() {
+        QTest::addColumn<QString>("method");
+        for (const Method& m : contourMethods())
+            QTest::newRow(m.name.c_str()) << QString::fromStdString(m.name);
+    }
+
+    void sphereGivesOneLoop() {
+        QFETCH(QString, method);
+        const Method& m = *findMethod(method.toStdString());
+        const QString out = freshOutputDir("sphere-" + method);
+        const QString svgPath = out + "/sphere.svg", jsonPath = out + "/sphere.json";
+        const RunResult r =
+            run({"--mesh", sphere_, "--method", method, "--svg", svgPath, "--json", jsonPath});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY(r.err.isEmpty());
+        for (const Phase& phase : m.phases)
+            QVERIFY2(r.out.contains(QString::fromStdString(phase.name)), qPrintable(r.out));
+        QCOMPARE(filesIn(out), QStringList({"sphere.json", "sphere.svg"}));
+
+        // SVG: the viewport's size, one closed contour polyline inside it.
+        const SvgFile svg = readSvg(svgPath);
+        QVERIFY2(svg.ok, qPrintable(svg.error));
+        QCOMPARE(svg.width, 800);
+        QCOMPARE(svg.height, 600);
+        QCOMPARE(svg.viewBox, QString("0 0 800 600"));
+        QVERIFY(svg.groups.contains("contour"));
+        QVERIFY(svg.groups.contains("boundary"));
+        QCOMPARE(svg.count("contour"), 1);
+        QCOMPARE(svg.count("boundary"), 0);
+        const SvgPolyline& loop = svg.polylines.front();
+        QCOMPARE(loop.type, QString("contour"));
+        QVERIFY(loop.closed);
+        QVERIFY(loop.points.size() >= 8);
+        QVERIFY((loop.points.front() - loop.points.back()).norm() < 1e-9);
+        for (const Vec2& p : loop.points) {
+            QVERIFY2(p.x() >= 0 && p.x() <= 800 && p.y() >= 0 && p.y() <= 600,
+                     qPrintable(QString("point %1, %2").arg(p.x()).arg(p.y())));
+        }
+
+        // JSON: mesh, method, parameters, camera, phases, totals, curves.
+        const nlohmann::json j = readJson(jsonPath);
+        QVERIFY(j.is_object());
+        QCOMPARE(j["tool"]["name"].get<std::string>(), std::string("contour-batch"));
+        QVERIFY(!j["tool"]["version"].get<std::string>().empty());
+        QCOMPARE(j["mesh"]["path"].get<std::string>(), sphere_.toStdString());
+        QCOMPARE(j["mesh"]["vertices"].get<int>(), sphereMesh_.vertexCount());
+        QCOMPARE(j["mesh"]["faces"].get<int>(), sphereMesh_.faceCount());
+        QCOMPARE(j["mesh"]["boundary_edges"].get<int>(), 0);
+        QVERIFY(j["mesh"]["polygon_faces"].get<int>() > 0); // quads between the poles
+        QCOMPARE(j["method"]["name"].get<std::string>(), m.name);
+        for (const ParameterSpec& spec : m.parameters)
+            QVERIFY2(j["method"]["parameters"].contains(spec.name), spec.name.c_str());
+        QCOMPARE(j["method"]["parameters"].size(), m.parameters.size());
+        QCOMPARE(j["views"].size(), size_t(1));
+        const nlohmann::json& view = j["views"][0];
+        QCOMPARE(view["camera"]["viewport"]["width"].get<int>(), 800);
+        QCOMPARE(view["phases"].size(), m.phases.size());
+        QCOMPARE(view["completed_phases"].get<size_t>(), m.phases.size());
+        for (size_t i = 0; i < m.phases.size(); ++i) {
+            const nlohmann::json& phase = view["phases"][i];
+            QCOMPARE(phase["name"].get<std::string>(), m.phases[i].name);
+            QVERIFY(phase["seconds"].is_number());
+            QVERIFY(phase["seconds"].get<double>() >= 0.0);
+            QVERIFY(phase["counters"].is_object());
+            QVERIFY(phase["invariants"].is_array());
+            QCOMPARE(phase["violations"].get<long long>(), 0LL);
+        }
+        const nlohmann::json& totals = view["totals"];
+        QCOMPARE(totals["contour_chains"].get<int>(), 1);
+        QCOMPARE(totals["closed_loops"].get<int>(), 1);
+        QCOMPARE(totals["open_chains"].get<int>(), 0);
+        QCOMPARE(totals["boundary_curves"].get<int>(), 0);
+        QCOMPARE(totals["counters"]["closed loops"].get<int>(), 1);
+        QCOMPARE(view["curves"].size(), size_t(1));
+        const nlohmann::json& curve = view["curves"][0];
+        QCOMPARE(curve["type"].get<std::string>(), std::string("contour"));
+        QVERIFY(curve["closed"].get<bool>());
+        QCOMPARE(curve["points"].get<size_t>() + 1, loop.points.size());
+        // The report measures the curve the SVG draws.
+        const double length = curve["length_px"].get<double>();
+        QVERIFY(length > 100.0);
+        QVERIFY(std::abs(length - polylineLength(loop.points)) < 1e-3 * length);
+    }
+
+    void cameraFlagsAreReported() {
+        const QString out = freshOutputDir("flags");
+        const RunResult r = run({"--mesh",         sphere_,
+                                 "--method",       "interpolated",
+                                 "--eye",          "0.5,1,6",
+                                 "--target",       "0,0.1,0",
+                                 "--up",           "0,1,0",
+                                 "--fov",          "40",
+                                 "--width",        "640",
+                                 "--height",       "480",
+                                 "--json",         out + "/r.json",
+                                 "--svg",          out + "/r.svg",
+                                 "--write-camera", out + "/cam.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json j = readJson(out + "/r.json");
+        const nlohmann::json& camera = j["views"][0]["camera"];
+        QCOMPARE(camera["projection"].get<std::string>(), std::string("perspective"));
+        QCOMPARE(camera["eye"], nlohmann::json({0.5, 1.0, 6.0}));
+        QCOMPARE(camera["target"], nlohmann::json({0.0, 0.1, 0.0}));
+        QCOMPARE(camera["up"], nlohmann::json({0.0, 1.0, 0.0}));
+        QCOMPARE(camera["fov_y_degrees"].get<double>(), 40.0);
+        QCOMPARE(camera["viewport"]["width"].get<int>(), 640);
+        QCOMPARE(camera["viewport"]["height"].get<int>(), 480);
+        // --write-camera writes the same camera, and it reads back.
+        QCOMPARE(readJson(out + "/cam.json"), camera);
+        QCOMPARE(Camera::readJson((out + "/cam.json").toStdString()).toJson(), camera);
+        const SvgFile svg = readSvg(out + "/r.svg");
+        QVERIFY(svg.ok);
+        QCOMPARE(svg.width, 640);
+        QCOMPARE(svg.height, 480);
+        QCOMPARE(svg.count("contour"), 1);
+    }
+
+    void cameraFile() {
+        Camera camera;
+        camera.projection = Projection::Orthographic;
+        camera.eye = Vec3(1, 2, 5);
+        camera.target = Vec3(0, 0, 0);
+        camera.up = Vec3(0, 1, 0);
+        camera.orthoHeight = 3.0;
+        camera.viewport = {500, 400};
+        const QString cameraPath = path("ortho-camera.json");
+        camera.writeJson(cameraPath.toStdString());
+        for (const char* method : {"mesh", "interpolated"}) {
+            const QString out = freshOutputDir(QString("camera-file-") + method);
+            const RunResult r = run({"--mesh", sphere_, "--method", method, "--camera", cameraPath,
+                                     "--json", out + "/r.json", "--svg", out + "/r.svg"});
+            QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+            const nlohmann::json j = readJson(out + "/r.json");
+            QCOMPARE(j["views"][0]["camera"], camera.toJson());
+            QCOMPARE(j["views"][0]["totals"]["closed_loops"].get<int>(), 1);
+            const SvgFile svg = readSvg(out + "/r.svg");
+            QCOMPARE(svg.width, 500);
+            QCOMPARE(svg.height, 400);
+            QCOMPARE(svg.count("contour"), 1);
+            // Orthographic: the unit sphere's outline is a circle of
+            // radius 1/3 of the view height (the view is 3 units high).
+            for (const Vec2& p : svg.polylines.front().points)
+                QVERIFY(std::abs((p - Vec2(250, 200)).norm() - 400.0 / 3.0) < 4.0);
+        }
+        // --width overrides the file's viewport.
+        const QString out = freshOutputDir("camera-file-width");
+        const RunResult r = run(
+            {"--mesh", sphere_, "--camera", cameraPath, "--width", "300", "--svg", out + "/r.svg"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const SvgFile svg = readSvg(out + "/r.svg");
+        QCOMPARE(svg.width, 300);
+        QCOMPARE(svg.height, 400);
+    }
+
+    void phaseStopsEarly_data() {
+        QTest::addColumn<QString>("method");
+        QTest::addColumn<int>("phases");
+        for (const Method& m : contourMethods())
+            for (int n = 0; n < static_cast<int>(m.phases.size()); ++n)
+                QTest::addRow("%s-%d", m.name.c_str(), n) << QString::fromStdString(m.name) << n;
+    }
+
+    void phaseStopsEarly() {
+        QFETCH(QString, method);
+        QFETCH(int, phases);
+        const Method& m = *findMethod(method.toStdString());
+        const QString out = freshOutputDir("phase");
+        const RunResult r =
+            run({"--mesh", sphere_, "--method", method, "--phase", QString::number(phases),
+                 "--json", out + "/r.json", "--svg", out + "/r.svg"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json j = readJson(out + "/r.json");
+        const nlohmann::json& view = j["views"][0];
+        QCOMPARE(view["phases"].size(), size_t(phases));
+        QCOMPARE(view["completed_phases"].get<int>(), phases);
+        QCOMPARE(view["phase_count"].get<size_t>(), m.phases.size());
+        for (int i = 0; i < phases; ++i)
+            QCOMPARE(view["phases"][size_t(i)]["name"].get<std::string>(),
+                     m.phases[size_t(i)].name);
+        // The phase after the last one run did not run.
+        QVERIFY(!r.out.contains(QString::fromStdString(" " + m.phases[size_t(phases)].name + " ")));
+        // Chaining is the last phase: before it there are no curves.
+        const SvgFile svg = readSvg(out + "/r.svg");
+        QVERIFY(svg.ok);
+        QCOMPARE(int(svg.polylines.size()), 0);
+    }
+
+    void parametersReachTheMethod_data() {
+        QTest::addColumn<QString>("method");
+        QTest::addColumn<QString>("includeBoundaries");
+        QTest::addColumn<int>("boundaryCurves");
+        for (const char* m : {"mesh", "interpolated"}) {
+            QTest::addRow("%s-default", m) << QString(m) << QString() << 1;
+            QTest::addRow("%s-true", m) << QString(m) << QString("true") << 1;
+            QTest::addRow("%s-false", m) << QString(m) << QString("false") << 0;
+        }
+    }
+
+    void parametersReachTheMethod() {
+        QFETCH(QString, method);
+        QFETCH(QString, includeBoundaries);
+        QFETCH(int, boundaryCurves);
+        const QString out = freshOutputDir("parameters");
+        QStringList args{"--mesh", saddle_,         "--method", method,
+                         "--json", out + "/r.json", "--svg",    out + "/r.svg"};
+        if (!includeBoundaries.isEmpty())
+            args << "--include-boundaries" << includeBoundaries;
+        if (method == "interpolated")
+            args << "--normal-weighting"
+                 << "angle";
+        const RunResult r = run(args);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json j = readJson(out + "/r.json");
+        QCOMPARE(j["method"]["parameters"]["include-boundaries"].get<bool>(), boundaryCurves == 1);
+        if (method == "interpolated")
+            QCOMPARE(j["method"]["parameters"]["normal-weighting"].get<std::string>(),
+                     std::string("angle"));
+        QCOMPARE(j["mesh"]["boundary_edges"].get<int>(), 4 * 16);
+        QCOMPARE(j["views"][0]["totals"]["boundary_curves"].get<int>(), boundaryCurves);
+        const SvgFile svg = readSvg(out + "/r.svg");
+        QVERIFY(svg.ok);
+        QCOMPARE(svg.count("boundary"), boundaryCurves);
+        for (const SvgPolyline& p : svg.polylines)
+            QCOMPARE(p.type, p.group);
+    }
+
+    void views26() {
+        const QString out = freshOutputDir("views26");
+        const RunResult r =
+            run({"--mesh", sphere_, "--method", "interpolated", "--views26", "--svg",
+                 out + "/s.svg", "--json", out + "/r.json", "--write-camera", out + "/cam.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(filesIn(out).size(), 2 * 26 + 1);
+        const nlohmann::json j = readJson(out + "/r.json");
+        QCOMPARE(j["views"].size(), size_t(26));
+        const std::vector<Camera> expected =
+            Camera::views26(sphereMesh_.triangulate().boundingBox(), Viewport{800, 600});
+        for (int v = 0; v < 26; ++v) {
+            const QString suffix = QString("_view%1").arg(v, 2, 10, QChar('0'));
+            const SvgFile svg = readSvg(out + "/s" + suffix + ".svg");
+            QVERIFY2(svg.ok, qPrintable(suffix + ": " + svg.error));
+            QCOMPARE(svg.count("contour"), 1);
+            const nlohmann::json& view = j["views"][size_t(v)];
+            QCOMPARE(view["index"].get<int>(), v);
+            QCOMPARE(view["totals"]["closed_loops"].get<int>(), 1);
+            QCOMPARE(view["totals"]["contour_chains"].get<int>(), 1);
+            QCOMPARE(view["camera"], expected[size_t(v)].toJson());
+            QCOMPARE(readJson(out + "/cam" + suffix + ".json"), view["camera"]);
+        }
+    }
+
+    void cliErrors_data() {
+        QTest::addColumn<QStringList>("args");
+        QTest::addColumn<int>("exitCode");
+        QTest::addColumn<QString>("message");
+
+        const QString s = sphere_;
+        QTest::newRow("missing --mesh")
+            << QStringList{"--method", "mesh"} << 2 << "--mesh is required";
+        QTest::newRow("unknown method")
+            << QStringList{"--mesh", s, "--method", "bogus"} << 2 << "unknown method \"bogus\"";
+        for (const PlannedMethod& planned : plannedMethods())
+            QTest::addRow("planned %s", planned.name.c_str())
+                << QStringList{"--mesh", s, "--method", QString::fromStdString(planned.name)} << 2
+                << QString::fromStdString(planned.reason);
+        QTest::newRow("unknown option")
+            << QStringList{"--mesh", s, "--frobnicate"} << 2 << "--frobnicate";
+        QTest::newRow("bad --eye: two numbers")
+            << QStringList{"--mesh", s, "--eye", "1,2"} << 2 << "--eye: \"1,2\" is not three";
+        QTest::newRow("bad --eye: text")
+            << QStringList{"--mesh", s, "--eye", "1,x,3"} << 2 << "--eye: \"1,x,3\"";
+        QTest::newRow("bad --target")
+            << QStringList{"--mesh", s, "--target", "0,0,nan"} << 2 << "--target";
+        QTest::newRow("eye at target")
+            << QStringList{"--mesh", s, "--eye", "0,0,0", "--target", "0,0,0"} << 2
+            << "eye and target coincide";
+        QTest::newRow("bad --fov") << QStringList{"--mesh", s, "--fov", "200"} << 2 << "--fov";
+        QTest::newRow("bad --width text")
+            << QStringList{"--mesh", s, "--width", "wide"} << 2 << "--width";
+        QTest::newRow("bad --width value")
+            << QStringList{"--mesh", s, "--width", "0"} << 2 << "--width";
+        QTest::newRow("--phase too large")
+            << QStringList{"--mesh", s, "--phase", "4"} << 2 << "--phase: 4 is not in [0, 3]";
+        QTest::newRow("--phase negative")
+            << QStringList{"--mesh", s, "--phase", "-1"} << 2 << "--phase: -1 is not in [0, 3]";
+        QTest::newRow("bad --height value")
+            << QStringList{"--mesh", s, "--height", "-5"} << 2 << "--height: -5 pixels";
+        QTest::newRow("--camera with --eye")
+            << QStringList{"--mesh", s, "--camera", path("ortho-camera.json"), "--eye", "1,2,3"}
+            << 2 << "cannot be combined with --eye";
+        QTest::newRow("--views26 with --eye")
+            << QStringList{"--mesh", s, "--views26", "--eye", "1,2,3"} << 2
+            << "cannot be combined with --eye";
+        QTest::newRow("parameter of the other method")
+            << QStringList{"--mesh", s, "--method", "mesh", "--normal-weighting", "angle"} << 2
+            << "--normal-weighting is a parameter of method interpolated, not of method mesh";
+        QTest::newRow("choice out of range")
+            << QStringList{"--mesh", s, "--method", "interpolated", "--normal-weighting", "median"}
+            << 2 << "must be one of: area, angle, max";
+        QTest::newRow("bad boolean") << QStringList{"--mesh", s, "--include-boundaries", "maybe"}
+                                     << 2 << "\"maybe\" is not a boolean";
+
+        QTest::newRow("missing mesh file")
+            << QStringList{"--mesh", path("nowhere.obj")} << 1 << "nowhere.obj";
+        writeText(path("bad-index.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+        QTest::newRow("bad mesh: index out of range")
+            << QStringList{"--mesh", path("bad-index.obj")} << 1 << "bad-index.obj";
+        writeText(path("empty.obj"), "# nothing\n");
+        QTest::newRow("bad mesh: empty")
+            << QStringList{"--mesh", path("empty.obj")} << 1 << "empty.obj";
+        const QDir bad(CONTOUR_SOURCE_DIR "/tests/data/bad");
+        for (const QString& name : bad.entryList({"*.obj", "*.off", "*.ply"}, QDir::Files))
+            QTest::addRow("tests/data/bad/%s", qPrintable(name))
+                << QStringList{"--mesh", bad.filePath(name)} << 1 << name;
+
+        writeText(path("broken-camera.json"), "{\"eye\": [0, 0, 5], \"target\": ");
+        QTest::newRow("camera file: bad JSON")
+            << QStringList{"--mesh", s, "--camera", path("broken-camera.json")} << 1
+            << "broken-camera.json: not valid JSON";
+        writeText(path("no-eye-camera.json"), "{\"target\": [0, 0, 0]}");
+        QTest::newRow("camera file: no eye")
+            << QStringList{"--mesh", s, "--camera", path("no-eye-camera.json")} << 1
+            << "missing \"eye\"";
+        QTest::newRow("camera file: missing")
+            << QStringList{"--mesh", s, "--camera", path("no-camera.json")} << 1
+            << "no-camera.json: cannot open";
+    }
+
+    void cliErrors() {
+        QFETCH(QStringList, args);
+        QFETCH(int, exitCode);
+        QFETCH(QString, message);
+        const QString out = freshOutputDir("errors");
+        args << "--svg" << out + "/r.svg"
+             << "--json" << out + "/r.json"
+             << "--write-camera" << out + "/cam.json";
+        const RunResult r = run(args);
+        QVERIFY2(r.exitCode == exitCode,
+                 qPrintable(QString("exit code %1, stderr: %2").arg(r.exitCode).arg(r.err)));
+        QVERIFY2(r.err.contains(message), qPrintable("stderr: " + r.err));
+        QVERIFY2(filesIn(out).isEmpty(), qPrintable(filesIn(out).join(", ")));
+    }
+
+    // The exporters behind the CLI draw and measure only what lies in front
+    // of a perspective eye: a closed square around the eye keeps one piece.
+    void curvesBehindTheEyeAreClipped() {
+        Camera camera;
+        camera.eye = Vec3(0, 0, 0.5);
+        camera.target = Vec3(1, 0, 0.5);
+        camera.up = Vec3(0, 0, 1);
+        camera.viewport = {400, 300};
+        Polyline square;
+        square.closed = true;
+        for (const Vec3& p : {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)})
+            square.points.push_back({p});
+        Snapshot snapshot;
+        snapshot.curves = std::make_shared<const std::vector<Polyline>>(1, square);
+        const QString svgPath = path("clipped.svg");
+        writeSvg(svgPath.toStdString(), snapshot, camera);
+        const SvgFile svg = readSvg(svgPath);
+        QVERIFY2(svg.ok, qPrintable(svg.error));
+        QCOMPARE(svg.count("contour"), 1);
+        const std::vector<Vec2>& drawn = svg.polylines.front().points;
+        QCOMPARE(drawn.size(), size_t(2));
+        const Vec2 a = camera.project(Vec3(1, -1, 0)).pixel,
+                   b = camera.project(Vec3(1, 1, 0)).pixel;
+        QVERIFY((drawn[0] - a).norm() < 1e-3 && (drawn[1] - b).norm() < 1e-3);
+        QVERIFY(svg.polylines.front().closed); // the curve's own flag
+
+        const nlohmann::json curves = curvesJson(snapshot, camera);
+        QCOMPARE(curves.size(), size_t(1));
+        QCOMPARE(curves[0]["hidden_points"].get<int>(), 2);
+        QCOMPARE(curves[0]["pieces"].get<int>(), 1);
+        QVERIFY(std::abs(curves[0]["length_px"].get<double>() - (b - a).norm()) < 1e-9);
+
+        camera.projection = Projection::Orthographic; // sees everything
+        const nlohmann::json ortho = curvesJson(snapshot, camera);
+        QCOMPARE(ortho[0]["hidden_points"].get<int>(), 0);
+        QCOMPARE(ortho[0]["pieces"].get<int>(), 1);
+    }
+
+    // An output that cannot be written fails the run and leaves nothing
+    // behind: a missing folder is found before the run, a failed write
+    // takes the outputs already written by the run along.
+    void unwritableOutput() {
+        const QString out = freshOutputDir("unwritable");
+        RunResult r = run(
+            {"--mesh", sphere_, "--svg", out + "/r.svg", "--json", out + "/missing-folder/r.json"});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("missing-folder/r.json: cannot write"), qPrintable(r.err));
+        QVERIFY2(!r.out.contains("facing"), qPrintable(r.out)); // nothing ran
+        QVERIFY2(filesIn(out).isEmpty(), qPrintable(filesIn(out).join(", ")));
+
+        QVERIFY(QDir(out).mkdir("a-folder.json"));
+        r = run({"--mesh", sphere_, "--svg", out + "/r.svg", "--write-camera", out + "/c.json",
+                 "--json", out + "/a-folder.json"});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("a-folder.json"), qPrintable(r.err));
+        QVERIFY2(filesIn(out).isEmpty(), qPrintable(filesIn(out).join(", ")));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestCli)
+#include "test_cli.moc"
