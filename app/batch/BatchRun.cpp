@@ -1,7 +1,7 @@
 #include "BatchRun.h"
 
 #include "Summary.h"
-#include "export/AtomicFile.h"
+#include "io/AtomicFile.h"
 #include "export/JsonReport.h"
 #include "export/SvgWriter.h"
 #include "mesh/MeshError.h"
