@@ -1,0 +1,531 @@
+#include "MainWindow.h"
+
+#include "ImageView2D.h"
+#include "MethodPanel.h"
+#include "PhaseStepper.h"
+#include "SceneView3D.h"
+#include "contours/Methods.h"
+#include "mesh/MeshError.h"
+#include "mesh/MeshReader.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QEventLoop>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressBar>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTimer>
+#include <QToolBar>
+#include <QVBoxLayout>
+#include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
+
+namespace contour {
+
+namespace {
+
+// The "3/4 view" the analysis camera starts from: right, above, in front.
+const Vec3 kInitialViewDirection(0.55, 0.45, 1.0);
+const Viewport kFallbackViewport{800, 600};
+
+} // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+    setWindowTitle(tr("Contour Workbench"));
+    setAcceptDrops(true);
+    createLayout();
+    createActions();
+    connect(&watcher_, &QFutureWatcher<JobResult>::finished, this, &MainWindow::onJobFinished);
+    connect(methodPanel_, &MethodPanel::methodChanged, this, [this] { rebuildRunner(-1); });
+    // New parameters: run again up to the phase reached (or being run to).
+    connect(methodPanel_, &MethodPanel::parametersChanged, this,
+            [this] { rebuildRunner(runner_ ? reachedPhases() : -1); });
+    connect(stepper_, &PhaseStepper::stepRequested, this, &MainWindow::stepPhase);
+    connect(stepper_, &PhaseStepper::backRequested, this, &MainWindow::stepBack);
+    connect(stepper_, &PhaseStepper::resetRequested, this, &MainWindow::resetPhases);
+    connect(stepper_, &PhaseStepper::runToEndRequested, this, &MainWindow::runToEnd);
+    connect(sceneView_, &SceneView3D::viewMatchChanged, this, &MainWindow::updateActions);
+    stepper_->setMethod(methodPanel_->method());
+    updateActions();
+    updateStatus();
+    resize(1400, 850);
+}
+
+MainWindow::~MainWindow() {
+    cancelAndWait();
+}
+
+void MainWindow::createLayout() {
+    sceneView_ = new SceneView3D(this);
+    sceneView_->setToolTip(tr("3D view: drag to orbit (left), pan (middle, shift+left), zoom "
+                              "(right, wheel). Faces: yellow front, blue back; curves red."));
+    imageView_ = new ImageView2D(this);
+    splitter_ = new QSplitter(Qt::Horizontal, this);
+    splitter_->addWidget(sceneView_);
+    splitter_->addWidget(imageView_);
+    splitter_->setStretchFactor(0, 1);
+    splitter_->setStretchFactor(1, 1);
+    splitter_->setChildrenCollapsible(false);
+    setCentralWidget(splitter_);
+
+    methodPanel_ = new MethodPanel;
+    stepper_ = new PhaseStepper;
+    auto* panel = new QWidget;
+    auto* layout = new QVBoxLayout(panel);
+    layout->addWidget(methodPanel_);
+    layout->addWidget(stepper_, 1);
+    auto* dock = new QDockWidget(tr("Method"), this);
+    dock->setObjectName(QStringLiteral("methodDock"));
+    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+    dock->setWidget(panel);
+    dock->setMinimumWidth(320);
+    addDockWidget(Qt::LeftDockWidgetArea, dock);
+
+    meshLabel_ = new QLabel(this);
+    phaseLabel_ = new QLabel(this);
+    busyBar_ = new QProgressBar(this);
+    busyBar_->setRange(0, 0);
+    busyBar_->setMaximumWidth(160);
+    busyBar_->setVisible(false);
+    statusBar()->addPermanentWidget(busyBar_);
+    statusBar()->addPermanentWidget(phaseLabel_);
+    statusBar()->addPermanentWidget(meshLabel_);
+}
+
+void MainWindow::createActions() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    openAction_ = file->addAction(tr("&Open mesh…"), this, &MainWindow::openFileDialog);
+    openAction_->setShortcut(QKeySequence::Open);
+    file->addSeparator();
+    QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
+    quit->setShortcut(QKeySequence::Quit);
+
+    QMenu* run = menuBar()->addMenu(tr("&Run"));
+    stepAction_ = run->addAction(tr("&Step"), this, &MainWindow::stepPhase);
+    stepAction_->setShortcut(Qt::Key_F10);
+    stepAction_->setToolTip(tr("Run the next phase (F10)"));
+    backAction_ = run->addAction(tr("&Back"), this, &MainWindow::stepBack);
+    backAction_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F10));
+    backAction_->setToolTip(tr("Drop the last phase result (Shift+F10)"));
+    runAction_ = run->addAction(tr("Run to &end"), this, &MainWindow::runToEnd);
+    runAction_->setShortcut(Qt::Key_F5);
+    runAction_->setToolTip(tr("Run every remaining phase (F5)"));
+    resetAction_ = run->addAction(tr("&Reset"), this, &MainWindow::resetPhases);
+    resetAction_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
+    resetAction_->setToolTip(tr("Return to the input (Shift+F5)"));
+
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    cameraFromViewAction_ = view->addAction(tr("Set analysis &camera from this view"), this,
+                                            &MainWindow::setAnalysisCameraFromView);
+    cameraFromViewAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_K));
+    cameraFromViewAction_->setToolTip(
+        tr("Use the 3D view's camera as the analysis camera and run the phases again (Ctrl+K)"));
+    viewToCameraAction_ = view->addAction(tr("&Look through the analysis camera"), this,
+                                          &MainWindow::resetViewToAnalysisCamera);
+    viewToCameraAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
+
+    QToolBar* tools = addToolBar(tr("Phases"));
+    tools->setObjectName(QStringLiteral("phaseToolBar"));
+    tools->addAction(openAction_);
+    tools->addSeparator();
+    tools->addAction(resetAction_);
+    tools->addAction(backAction_);
+    tools->addAction(stepAction_);
+    tools->addAction(runAction_);
+    tools->addSeparator();
+    tools->addAction(cameraFromViewAction_);
+    tools->addAction(viewToCameraAction_);
+}
+
+void MainWindow::openFileDialog() {
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Open mesh"), QFileInfo(meshName_).absolutePath(),
+        tr("Meshes (*.obj *.off *.ply *.OBJ *.OFF *.PLY);;All files (*)"));
+    if (!path.isEmpty())
+        openMesh(path);
+}
+
+bool MainWindow::openMesh(const QString& path) {
+    std::shared_ptr<const PolygonMesh> mesh;
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    try {
+        mesh = std::make_shared<const PolygonMesh>(readMesh(path.toStdString()));
+    } catch (const MeshError& e) {
+        QApplication::restoreOverrideCursor();
+        showError(tr("Cannot open mesh"), QString::fromStdString(e.what()));
+        return false;
+    } catch (const std::exception& e) {
+        QApplication::restoreOverrideCursor();
+        showError(tr("Cannot open mesh"),
+                  QStringLiteral("%1: %2").arg(path, QString::fromStdString(e.what())));
+        return false;
+    }
+    QApplication::restoreOverrideCursor();
+    return setMesh(std::move(mesh), path);
+}
+
+bool MainWindow::setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString& name) {
+    if (!mesh) {
+        showError(tr("Cannot open mesh"), tr("%1: no mesh").arg(name));
+        return false;
+    }
+    Snapshot input;
+    try {
+        input = makeInputSnapshot(mesh);
+    } catch (const std::exception& e) {
+        showError(tr("Cannot open mesh"),
+                  QStringLiteral("%1: %2").arg(name, QString::fromStdString(e.what())));
+        return false;
+    }
+    const BoundingBox box = mesh->boundingBox();
+    if (box.isEmpty() || input.mesh->faceCount() == 0) {
+        showError(tr("Cannot open mesh"), tr("%1: the mesh has no faces").arg(name));
+        return false;
+    }
+    cancelAndWait();
+    runner_.reset();
+    cage_ = std::move(mesh);
+    input_ = std::move(input);
+    meshName_ = name;
+
+    Viewport viewport = kFallbackViewport;
+    const double ratio = sceneView_->devicePixelRatioF();
+    if (sceneView_->isVisible() && sceneView_->width() >= 16 && sceneView_->height() >= 16)
+        viewport = {static_cast<int>(sceneView_->width() * ratio),
+                    static_cast<int>(sceneView_->height() * ratio)};
+    camera_ = Camera::framing(box, kInitialViewDirection, viewport);
+    sceneView_->setViewCamera(*camera_);
+    setWindowTitle(tr("%1 — Contour Workbench").arg(QFileInfo(name).fileName()));
+    lastError_.clear();
+    statusBar()->clearMessage();
+    rebuildRunner(-1);
+    return true;
+}
+
+QString MainWindow::methodName() const {
+    return methodPanel_->methodName();
+}
+
+bool MainWindow::setMethod(const QString& name) {
+    if (name == methodName())
+        return findMethod(name.toStdString()) != nullptr;
+    return methodPanel_->setMethod(name); // methodChanged re-creates the runner
+}
+
+void MainWindow::rebuildRunner(int completed) {
+    cancelAndWait();
+    runner_.reset();
+    const Method* method = methodPanel_->method();
+    stepper_->setMethod(method);
+    if (!method || !input_ || !camera_) {
+        showRunnerState();
+        updateActions();
+        updateStatus();
+        return;
+    }
+    try {
+        runner_ = std::make_unique<Runner>(*method, *input_, *camera_, methodPanel_->parameters());
+    } catch (const std::exception& e) {
+        showError(tr("Cannot run %1").arg(QString::fromStdString(method->label)),
+                  QString::fromStdString(e.what()));
+        showRunnerState();
+        updateActions();
+        updateStatus();
+        return;
+    }
+    showRunnerState();
+    const int target =
+        completed < 0 ? runner_->phaseCount() : std::min(completed, runner_->phaseCount());
+    if (target > 0)
+        runToPhase(target);
+    else {
+        updateActions();
+        updateStatus();
+    }
+}
+
+void MainWindow::stepPhase() {
+    if (busy_ || !runner_ || runner_->atEnd())
+        return;
+    runToPhase(runner_->completedPhases() + 1);
+}
+
+void MainWindow::runToEnd() {
+    if (busy_ || !runner_)
+        return;
+    runToPhase(runner_->phaseCount());
+}
+
+void MainWindow::runToPhase(int completed) {
+    if (busy_ || !runner_)
+        return;
+    completed = std::clamp(completed, 0, runner_->phaseCount());
+    if (completed <= runner_->completedPhases()) {
+        while (runner_->completedPhases() > completed)
+            runner_->back();
+        showRunnerState();
+        updateActions();
+        updateStatus();
+        return;
+    }
+    const QString what = completed == runner_->completedPhases() + 1
+                             ? tr("Running phase %1").arg(completed)
+                             : tr("Running to phase %1").arg(completed);
+    targetPhases_ = completed;
+    startJob(
+        [this, completed](Runner& runner, const std::function<void(int)>& phaseStarted) {
+            while (runner.completedPhases() < completed) {
+                if (cancelRequested_)
+                    throw PhaseCancelled();
+                phaseStarted(runner.completedPhases());
+                runner.step();
+            }
+        },
+        what);
+}
+
+void MainWindow::stepBack() {
+    if (busy_ || !runner_)
+        return;
+    runner_->back();
+    targetPhases_ = runner_->completedPhases();
+    showRunnerState();
+    updateActions();
+    updateStatus();
+}
+
+void MainWindow::resetPhases() {
+    if (busy_ || !runner_)
+        return;
+    runner_->reset();
+    targetPhases_ = 0;
+    showRunnerState();
+    updateActions();
+    updateStatus();
+}
+
+void MainWindow::setAnalysisCameraFromView() {
+    if (!input_)
+        return;
+    const int reached = runner_ ? reachedPhases() : -1;
+    Camera camera = sceneView_->viewCamera();
+    if (const std::string problem = camera.validate(); !problem.empty()) {
+        showError(tr("Cannot use this view"), QString::fromStdString(problem));
+        return;
+    }
+    camera_ = camera;
+    rebuildRunner(reached);
+}
+
+void MainWindow::resetViewToAnalysisCamera() {
+    if (camera_)
+        sceneView_->setViewCamera(*camera_);
+}
+
+void MainWindow::startJob(Job job, const QString& what) {
+    if (busy_ || !runner_)
+        return;
+    busy_ = true;
+    cancelRequested_ = false;
+    const unsigned generation = ++generation_;
+    jobName_ = what;
+    stepper_->setBusy(true, runner_->completedPhases());
+    updateActions();
+    updateStatus();
+    Runner* runner = runner_.get();
+    const auto phaseStarted = [this, generation](int phase) {
+        QMetaObject::invokeMethod(
+            this, [this, phase, generation] { onPhaseStarted(phase, generation); },
+            Qt::QueuedConnection);
+    };
+    watcher_.setFuture(QtConcurrent::run([runner, job = std::move(job), phaseStarted]() {
+        JobResult result;
+        try {
+            job(*runner, phaseStarted);
+        } catch (const PhaseCancelled&) {
+            result.cancelled = true;
+        } catch (const std::exception& e) {
+            result.error = QString::fromStdString(e.what());
+        } catch (...) {
+            result.error = QStringLiteral("unknown error");
+        }
+        return result;
+    }));
+}
+
+void MainWindow::onPhaseStarted(int phase, unsigned generation) {
+    if (!busy_ || generation != generation_)
+        return;
+    stepper_->setBusy(true, phase);
+    if (runner_ && phase < runner_->phaseCount())
+        phaseLabel_->setText(
+            tr("running %1…").arg(QString::fromStdString(runner_->method().phases[phase].name)));
+}
+
+void MainWindow::onJobFinished() {
+    // A late signal of a job that cancelAndWait() already finished.
+    if (!busy_ || !watcher_.future().isFinished())
+        return;
+    const JobResult result = watcher_.result();
+    busy_ = false;
+    stepper_->setBusy(false);
+    showRunnerState();
+    if (!result.error.isEmpty())
+        showError(tr("Phase failed"), result.error);
+    else if (result.cancelled)
+        statusBar()->showMessage(tr("Cancelled"), 3000);
+    updateActions();
+    updateStatus();
+    emit idle();
+}
+
+void MainWindow::cancelAndWait() {
+    if (!busy_)
+        return;
+    cancelRequested_ = true;
+    if (runner_)
+        runner_->requestCancel();
+    watcher_.waitForFinished();
+    onJobFinished();
+}
+
+bool MainWindow::waitForIdle(int timeoutMs) {
+    if (!busy_)
+        return true;
+    QEventLoop loop;
+    QTimer timer;
+    timer.setSingleShot(true);
+    connect(this, &MainWindow::idle, &loop, &QEventLoop::quit);
+    connect(&timer, &QTimer::timeout, &loop, &QEventLoop::quit);
+    timer.start(timeoutMs);
+    while (busy_ && timer.isActive())
+        loop.exec();
+    return !busy_;
+}
+
+int MainWindow::reachedPhases() const {
+    // While a job runs the runner belongs to the worker thread: use the job's
+    // target instead of reading it.
+    return busy_ ? targetPhases_ : runner_->completedPhases();
+}
+
+int MainWindow::completedPhases() const {
+    return runner_ && !busy_ ? runner_->completedPhases() : 0;
+}
+
+Snapshot MainWindow::currentSnapshot() const {
+    if (runner_ && !busy_)
+        return runner_->current();
+    if (input_)
+        return *input_;
+    return {};
+}
+
+void MainWindow::showRunnerState() {
+    if (!runner_) {
+        if (input_) {
+            sceneView_->setSnapshot(*input_);
+            if (camera_) {
+                sceneView_->setAnalysisCamera(*camera_);
+                imageView_->setScene(*input_, *camera_);
+            }
+        } else {
+            sceneView_->clearScene();
+            imageView_->clearScene();
+        }
+        stepper_->setSnapshots({});
+        return;
+    }
+    const Snapshot& snapshot = runner_->current();
+    sceneView_->setAnalysisCamera(runner_->camera());
+    sceneView_->setSnapshot(snapshot);
+    imageView_->setScene(snapshot, runner_->camera());
+    stepper_->setSnapshots(runner_->snapshots());
+}
+
+void MainWindow::updateActions() {
+    const bool idle = !busy_ && runner_;
+    stepAction_->setEnabled(idle && !runner_->atEnd());
+    runAction_->setEnabled(idle && !runner_->atEnd());
+    backAction_->setEnabled(idle && runner_->completedPhases() > 0);
+    resetAction_->setEnabled(idle && runner_->completedPhases() > 0);
+    cameraFromViewAction_->setEnabled(input_.has_value());
+    viewToCameraAction_->setEnabled(camera_.has_value());
+}
+
+void MainWindow::updateStatus() {
+    if (input_) {
+        meshLabel_->setText(tr("%1 — %2 faces, %3 vertices")
+                                .arg(QFileInfo(meshName_).fileName())
+                                .arg(input_->mesh->faceCount())
+                                .arg(input_->mesh->vertexCount()));
+    } else {
+        meshLabel_->setText(
+            tr("no mesh — File > Open, drop a file, or pass one on the command line"));
+    }
+    busyBar_->setVisible(busy_);
+    if (busy_) {
+        phaseLabel_->setText(jobName_ + QStringLiteral("…"));
+        return;
+    }
+    if (!runner_) {
+        phaseLabel_->setText(QString());
+        return;
+    }
+    const Snapshot& s = runner_->current();
+    QString text = tr("%1: %2 (%3/%4)")
+                       .arg(QString::fromStdString(runner_->method().name),
+                            QString::fromStdString(s.phaseName))
+                       .arg(runner_->completedPhases())
+                       .arg(runner_->phaseCount());
+    if (s.phaseIndex >= 0)
+        text += tr(", %1 ms").arg(s.phaseSeconds * 1000.0, 0, 'f', 1);
+    if (const long long violations = s.invariantViolations(); violations > 0)
+        text += tr(", %1 post-condition violations").arg(violations);
+    phaseLabel_->setText(text);
+}
+
+void MainWindow::showError(const QString& title, const QString& message) {
+    lastError_ = message;
+    statusBar()->showMessage(title + QStringLiteral(": ") + message);
+    if (!interactive_)
+        return;
+    // Not exec(): a nested event loop must not run while the caller's state
+    // is half-updated; the box is window-modal and deletes itself.
+    auto* box = new QMessageBox(QMessageBox::Warning, title, message, QMessageBox::Ok, this);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+    const QMimeData* mime = event->mimeData();
+    if (mime->hasUrls() && !mime->urls().isEmpty() && mime->urls().first().isLocalFile())
+        event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+    const QList<QUrl> urls = event->mimeData()->urls();
+    if (urls.isEmpty() || !urls.first().isLocalFile())
+        return;
+    event->acceptProposedAction();
+    const QString path = urls.first().toLocalFile();
+    // Open after the drop returns, so the drag source is not kept waiting.
+    QTimer::singleShot(0, this, [this, path] { openMesh(path); });
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    cancelAndWait();
+    QMainWindow::closeEvent(event);
+}
+
+} // namespace contour

@@ -1,0 +1,163 @@
+#pragma once
+// The workbench window: opens a mesh, owns the contour::Runner of the chosen
+// method on the analysis camera, runs its phases off the GUI thread
+// (QtConcurrent) and hands each resulting immutable Snapshot to the views.
+//
+// Layout: the 3D scene view and the 2D image view side by side in a
+// splitter, a dock with the method panel and the phase stepper on the left,
+// a status bar. The small public API below is what the menus call, and what
+// tests drive.
+#include "camera/Camera.h"
+#include "mesh/PolygonMesh.h"
+#include "pipeline/Runner.h"
+#include "pipeline/Snapshot.h"
+
+#include <QFutureWatcher>
+#include <QMainWindow>
+#include <QString>
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+
+class QAction;
+class QLabel;
+class QProgressBar;
+class QSplitter;
+
+namespace contour {
+
+class ImageView2D;
+class MethodPanel;
+class PhaseStepper;
+class SceneView3D;
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+
+public:
+    explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    // Reads a mesh (OBJ, OFF, PLY), frames the analysis camera on it, makes
+    // the runner and starts running every phase. Returns false (and shows the
+    // error in a message box and the status bar) when the file cannot be
+    // used. The run goes on in the background: see waitForIdle().
+    bool openMesh(const QString& path);
+    // Same for a mesh already in memory; `name` is shown in the title.
+    bool setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString& name);
+    bool hasMesh() const { return static_cast<bool>(cage_); }
+    QString meshPath() const { return meshName_; }
+
+    QString methodName() const;
+    // Switches to a runnable method: re-creates the runner and runs to the
+    // end. False for an unknown or planned method.
+    bool setMethod(const QString& name);
+
+    // Phase control; each does nothing while a phase runs.
+    void stepPhase();
+    void stepBack();
+    void runToEnd();
+    void resetPhases();
+    void runToPhase(int completed);
+
+    // Takes the 3D view's camera as the analysis camera, re-creates the runner
+    // and re-runs to the phase that was reached.
+    void setAnalysisCameraFromView();
+    // Puts the 3D view back on the analysis camera.
+    void resetViewToAnalysisCamera();
+
+    bool isBusy() const { return busy_; }
+    // Processes events until no phase runs; false on timeout.
+    bool waitForIdle(int timeoutMs = 120000);
+
+    // Valid while idle.
+    const Runner* runner() const { return busy_ ? nullptr : runner_.get(); }
+    int completedPhases() const;
+    // The snapshot the views show (the input before any phase; an empty
+    // snapshot when no mesh is open).
+    Snapshot currentSnapshot() const;
+    std::optional<Camera> analysisCamera() const { return camera_; }
+    QString lastError() const { return lastError_; }
+
+    SceneView3D* sceneView() const { return sceneView_; }
+    ImageView2D* imageView() const { return imageView_; }
+    PhaseStepper* phaseStepper() const { return stepper_; }
+    MethodPanel* methodPanel() const { return methodPanel_; }
+
+    // When false, errors go to the status bar and lastError() only, without a
+    // message box (for scripted use).
+    void setInteractive(bool interactive) { interactive_ = interactive; }
+
+signals:
+    // A phase job finished (successfully or not) and the views are updated.
+    void idle();
+
+protected:
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
+    void closeEvent(QCloseEvent* event) override;
+
+private:
+    struct JobResult {
+        bool cancelled = false;
+        QString error;
+    };
+    // Runs on a worker thread; calls phaseStarted(phase) before each phase.
+    using Job = std::function<void(Runner&, const std::function<void(int)>& phaseStarted)>;
+
+    void createActions();
+    void createLayout();
+    void openFileDialog();
+    void showError(const QString& title, const QString& message);
+    // Makes a new runner for the current mesh, method, parameters and camera,
+    // then runs to `completed` phases (-1: to the end).
+    void rebuildRunner(int completed);
+    void startJob(Job job, const QString& what);
+    void onJobFinished();
+    void onPhaseStarted(int phase, unsigned generation);
+    void cancelAndWait();
+    // Phases completed, or aimed for by the running job; needs a runner.
+    int reachedPhases() const;
+    void showRunnerState();
+    void updateActions();
+    void updateStatus();
+
+    SceneView3D* sceneView_ = nullptr;
+    ImageView2D* imageView_ = nullptr;
+    MethodPanel* methodPanel_ = nullptr;
+    PhaseStepper* stepper_ = nullptr;
+    QSplitter* splitter_ = nullptr;
+    QLabel* meshLabel_ = nullptr;
+    QLabel* phaseLabel_ = nullptr;
+    QProgressBar* busyBar_ = nullptr;
+
+    QAction* openAction_ = nullptr;
+    QAction* stepAction_ = nullptr;
+    QAction* backAction_ = nullptr;
+    QAction* runAction_ = nullptr;
+    QAction* resetAction_ = nullptr;
+    QAction* cameraFromViewAction_ = nullptr;
+    QAction* viewToCameraAction_ = nullptr;
+
+    std::shared_ptr<const PolygonMesh> cage_;
+    std::optional<Snapshot> input_;
+    QString meshName_;
+    std::optional<Camera> camera_;
+    std::unique_ptr<Runner> runner_;
+    QFutureWatcher<JobResult> watcher_;
+    bool busy_ = false;
+    // Checked by a job between phases (the runner's own flag covers the
+    // inside of a phase).
+    std::atomic<bool> cancelRequested_{false};
+    // The phase count the running job (or the last one) aims for.
+    int targetPhases_ = 0;
+    // Incremented per job, so that late progress messages of an old job are
+    // ignored.
+    unsigned generation_ = 0;
+    QString jobName_;
+    QString lastError_;
+    bool interactive_ = true;
+};
+
+} // namespace contour

@@ -1,0 +1,34 @@
+#pragma once
+// The colours the views use, in one place so that tests can look for them in
+// grabbed images. Faces are coloured by the face field fields::kFacing; the
+// two facing colours differ in hue (yellow against blue), which survives
+// shading because lighting only scales a colour.
+#include <QColor>
+
+namespace contour {
+
+struct SceneColor {
+    double r, g, b; // in [0, 1]
+
+    QColor toQColor() const {
+        return QColor::fromRgbF(static_cast<float>(r), static_cast<float>(g),
+                                static_cast<float>(b));
+    }
+};
+
+namespace sceneColors {
+
+inline constexpr SceneColor kFrontFace{1.00, 0.84, 0.42};        // warm light yellow, hue ~43°
+inline constexpr SceneColor kBackFace{0.22, 0.42, 0.95};         // blue, hue ~224°
+inline constexpr SceneColor kEdgeOnFace{0.55, 0.55, 0.55};       // facing 0 (not generic)
+inline constexpr SceneColor kUnclassifiedFace{0.78, 0.78, 0.78}; // no facing field yet
+inline constexpr SceneColor kContour3D{0.90, 0.08, 0.08};        // red
+inline constexpr SceneColor kContour2D{0.0, 0.0, 0.0};           // black on the white image
+inline constexpr SceneColor kBoundary{0.10, 0.70, 0.25};         // green
+inline constexpr SceneColor kIntersection{0.85, 0.20, 0.85};     // magenta
+inline constexpr SceneColor kFrustum{0.92, 0.92, 0.92};          // light grey
+inline constexpr SceneColor kBackgroundTop{0.30, 0.30, 0.32};
+inline constexpr SceneColor kBackgroundBottom{0.10, 0.10, 0.11};
+
+} // namespace sceneColors
+} // namespace contour
