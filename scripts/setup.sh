@@ -21,7 +21,7 @@ done
 packages=(cmake g++ ninja-build pkg-config
   qt6-base-dev qt6-base-dev-tools libqt6opengl6-dev qt6-svg-dev libvtk9-dev libosd-dev
   libcgal-dev libembree-dev libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
-  libsuitesparse-dev xvfb xauth libgl1-mesa-dri)
+  libsuitesparse-dev xvfb xauth libgl1-mesa-dri qt6-qpa-plugins fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
