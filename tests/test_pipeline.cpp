@@ -60,14 +60,16 @@ Method testMethod(std::atomic<int>* cancelChecks) {
 class TestPipeline : public QObject {
     Q_OBJECT
 private slots:
-    void registryHasBothMethodsWithThreePhases() {
+    void registryHasBothMethodsWithTheirPhases() {
         for (const char* name : {"mesh", "interpolated"}) {
             const Method* m = findMethod(name);
             QVERIFY(m);
-            QVERIFY(m->phases.size() >= 3);
-            QCOMPARE(QString::fromStdString(m->phases[0].name), QString("facing"));
-            QCOMPARE(QString::fromStdString(m->phases[1].name), QString("extraction"));
-            QCOMPARE(QString::fromStdString(m->phases[2].name), QString("chaining"));
+            QVERIFY(m->phases.size() >= 4);
+            QCOMPARE(QString::fromStdString(m->phases[0].name), QString("surface"));
+            QCOMPARE(QString::fromStdString(m->phases[1].name), QString("facing"));
+            QCOMPARE(QString::fromStdString(m->phases[2].name), QString("extraction"));
+            QCOMPARE(QString::fromStdString(m->phases[3].name), QString("chaining"));
+            QVERIFY(m->parameter("surface") && m->parameter("tessellation-level"));
             QVERIFY(
                 validateParameters(m->parameters, ParameterSet::defaults(m->parameters)).empty());
         }
@@ -81,6 +83,9 @@ private slots:
         Runner r(m, makeInputSnapshot(tetrahedron()), frontCamera(),
                  ParameterSet::defaults(m.parameters));
         QCOMPARE(r.completedPhases(), 0);
+        QVERIFY(r.step()); // surface: none, the triangulated cage stays
+        QVERIFY(!r.current().field("facing"));
+        QVERIFY(r.current().mesh == r.snapshot(0).mesh);
         QVERIFY(r.step());
         const Snapshot afterFacing = r.current();
         QVERIFY(afterFacing.field("facing"));
@@ -89,17 +94,17 @@ private slots:
         QVERIFY(r.atEnd());
         QVERIFY(!r.step());
         // The earlier snapshot did not see later phases' fields.
-        QVERIFY(!r.snapshot(1).field("contour_edge"));
-        QVERIFY(r.snapshot(1).field("facing") == afterFacing.field("facing"));
+        QVERIFY(!r.snapshot(2).field("contour_edge"));
+        QVERIFY(r.snapshot(2).field("facing") == afterFacing.field("facing"));
         QVERIFY(r.current().curves && !r.current().curves->empty());
         QVERIFY(r.back());
-        QCOMPARE(r.completedPhases(), 2);
+        QCOMPARE(r.completedPhases(), 3);
         r.reset();
         QCOMPARE(r.completedPhases(), 0);
         QVERIFY(!r.back());
-        r.runTo(2);
+        r.runTo(3);
         QCOMPARE(r.current().phaseName, std::string("extraction"));
-        QCOMPARE(r.current().phaseIndex, 1);
+        QCOMPARE(r.current().phaseIndex, 2);
         QVERIFY(r.current().phaseSeconds >= 0.0);
     }
 

@@ -6,6 +6,7 @@
 #include "contours/ContourChaining.h"
 #include "contours/FacingPhase.h"
 #include "contours/Methods.h"
+#include "contours/SurfacePhase.h"
 #include "contours/VertexNormalCache.h"
 #include "mesh/VertexNormals.h"
 #include "pipeline/FieldNames.h"
@@ -25,11 +26,17 @@ bool isFront(double g) {
     return g > 0.0;
 }
 
-// Tutorial §6.2 steps 1-2: vertex normals, then g per vertex.
+// Tutorial §6.2 steps 1-2: vertex normals, then g per vertex. The surface
+// phase published the normals: the exact limit normals of a smooth surface
+// (Hertzmann & Zorin 2000), or the weighted averages with surface = none.
 void computeVertexFacing(const PhaseContext& ctx, Snapshot& s) {
     const TriangleMesh& mesh = *s.mesh;
-    const std::shared_ptr<const Field> normalField = cachedVertexNormals(
-        s.mesh, normalWeightingFromName(ctx.parameters.getChoice("normal-weighting")));
+    const auto published = s.fields.find(fields::kVertexNormal);
+    const std::shared_ptr<const Field> normalField =
+        published != s.fields.end()
+            ? published->second
+            : cachedVertexNormals(
+                  s.mesh, normalWeightingFromName(ctx.parameters.getChoice("normal-weighting")));
     const std::vector<Vec3>& normals = *normalField->vectors();
     ctx.checkCancelled();
     std::vector<double> g(mesh.vertexCount());
@@ -201,12 +208,13 @@ Method makeInterpolatedContourMethod() {
     m.name = "interpolated";
     m.label = "Interpolated contours";
     m.description = "Zero set of g = (c - p) · n interpolated linearly from vertex normals "
-                    "(tutorial §6.2, Hertzmann & Zorin 2000).";
+                    "(tutorial §6.2, Hertzmann & Zorin 2000), on the triangulated cage or on a "
+                    "tessellation of its smooth surface with exact limit normals.";
     m.parameters = {
         {"normal-weighting",
          "Vertex normal weights",
          "How face normals are averaged into vertex normals: area (tutorial §6.2.1), angle, or "
-         "Max (1999).",
+         "Max (1999). Only with surface = none; a smooth surface gives exact normals.",
          ParameterType::Choice,
          std::string("area"),
          0,
@@ -221,7 +229,11 @@ Method makeInterpolatedContourMethod() {
          0,
          {}},
     };
+    // The surface comes first, as its phase does.
+    const std::vector<ParameterSpec> surface = surfaceParameters();
+    m.parameters.insert(m.parameters.begin(), surface.begin(), surface.end());
     m.phases = {
+        makeSurfacePhase(NoneSurfaceNormals::WeightedAverage),
         {"facing", "Vertex normals, g = (c - p) · n at every vertex, and each face's facing.",
          computeVertexFacing, checkVertexFacing},
         {"extraction",

@@ -1,9 +1,11 @@
 // Mesh contours (tutorial §3.4, §3.7.1 brute force; convexity from appendix B
 // and C): edges between a front face and a back face of the triangle mesh.
+#include "camera/Facing.h"
 #include "contours/BoundaryCurves.h"
 #include "contours/ContourChaining.h"
 #include "contours/FacingPhase.h"
 #include "contours/Methods.h"
+#include "contours/SurfacePhase.h"
 #include "geometry/Predicates.h"
 #include "pipeline/FieldNames.h"
 
@@ -155,6 +157,29 @@ std::vector<InvariantCheck> checkChains(const PhaseContext& ctx, const Snapshot&
     return {once};
 }
 
+// The shared facing phase, plus g = (c - p) · n at the vertices when the
+// surface phase published exact normals (to colour the smooth surface by g;
+// the method itself uses only the faces' facing).
+Phase makeMeshFacingPhase() {
+    Phase phase = makeFacingPhase();
+    phase.description += " On a smooth surface also g = (c - p) · n at every vertex.";
+    phase.run = [faces = phase.run](const PhaseContext& ctx, Snapshot& s) {
+        faces(ctx, s);
+        const Field* normalField = s.field(fields::kVertexNormal);
+        if (!normalField)
+            return;
+        const TriangleMesh& mesh = *s.mesh;
+        const std::vector<Vec3>& normals = *normalField->vectors();
+        std::vector<double> g(mesh.vertexCount());
+        tbb::parallel_for(Index(0), mesh.vertexCount(), [&](Index v) {
+            g[v] = facingFunction(ctx.camera, mesh.position(v), normals[v]);
+        });
+        s.setField(fields::kG, {FieldLocation::Vertex, std::move(g),
+                                "g = (c - p) · n with the smooth surface's normal, > 0 front"});
+    };
+    return phase;
+}
+
 } // namespace
 
 Method makeMeshContourMethod() {
@@ -162,7 +187,8 @@ Method makeMeshContourMethod() {
     m.name = "mesh";
     m.label = "Mesh contours";
     m.description = "Edges between front-facing and back-facing triangles of the mesh "
-                    "(tutorial §3.4), classified convex or concave (appendix B).";
+                    "(tutorial §3.4), classified convex or concave (appendix B); the mesh is "
+                    "the triangulated cage or a tessellation of its smooth surface.";
     m.parameters = {
         {"include-boundaries",
          "Include boundaries",
@@ -182,8 +208,12 @@ Method makeMeshContourMethod() {
          0,
          {}},
     };
+    // The surface comes first, as its phase does.
+    const std::vector<ParameterSpec> surface = surfaceParameters();
+    m.parameters.insert(m.parameters.begin(), surface.begin(), surface.end());
     m.phases = {
-        makeFacingPhase(),
+        makeSurfacePhase(NoneSurfaceNormals::Omit),
+        makeMeshFacingPhase(),
         {"extraction",
          "Contour edges (front face next to back face) and boundary edges; "
          "convex/concave classification with an exact predicate.",

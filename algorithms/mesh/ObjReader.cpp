@@ -2,7 +2,8 @@
 // v//vn or v/vt/vn with 1-based indices, negative ones counting back from the
 // last vertex defined so far. Comments, line continuations ("\" at the end of
 // a line), texture coordinates, normals, groups, objects, smoothing groups,
-// materials and any other statement are skipped.
+// materials and any other statement are skipped, except the subdivision tags
+// "t crease" and "t corner" (OpenSubdiv's syntax, see readTag()).
 //
 // One pass over the bytes with std::from_chars, no tokens copied: a 1M-face
 // file parses in a fraction of a second.
@@ -10,9 +11,12 @@
 #include "mesh/MeshFileSupport.h"
 #include "mesh/MeshReader.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <limits>
+#include <unordered_set>
 
 namespace contour {
 
@@ -155,6 +159,140 @@ private:
     int line_ = 1;
 };
 
+// Where each subdivision tag came from, for the checks after the whole file
+// is read.
+struct TagLines {
+    std::vector<int> crease; // one per PolygonMesh::creases entry
+    std::vector<int> corner; // one per PolygonMesh::cornerSharpness entry
+};
+
+// A subdivision tag, OpenSubdiv's form: "t <name> <ints>/<floats>[/<strings>]"
+// followed by that many integers, reals and strings. "t crease 2/1 a b s"
+// makes edge (a, b) sharp; "t corner 1/1 v s" makes vertex v sharp. Vertex
+// indices are 0-based, as OpenSubdiv's shapes and the meshes of ../shared
+// write them. A crease may list several edges (a0 b0 a1 b1 ...) and a corner
+// several vertices, with one sharpness for all or one each. Other tags
+// (interpolateboundary, hole, ...) are skipped.
+void readTag(ObjCursor& in, PolygonMesh& mesh, TagLines& lines) {
+    in.skipBlanks();
+    const std::string_view name = in.token();
+    if (name != "crease" && name != "corner") {
+        in.skipStatement();
+        return;
+    }
+    in.skipBlanks();
+    const std::string_view counts = in.token();
+    // "<ints>/<floats>" or "<ints>/<floats>/<strings>".
+    long long count[3] = {0, 0, 0};
+    int parts = 0;
+    bool wellFormed = true;
+    for (const char *p = counts.data(), *end = counts.data() + counts.size(); wellFormed;) {
+        const auto [ptr, ec] = std::from_chars(p, end, count[parts]);
+        wellFormed = ptr != p && ec == std::errc() && count[parts] >= 0 &&
+                     count[parts] <= (1 << 20) && (ptr == end || *ptr == '/');
+        ++parts;
+        if (ptr == end)
+            break;
+        wellFormed = wellFormed && parts < 3;
+        p = ptr + 1;
+    }
+    if (!wellFormed || parts < 2)
+        in.fail("tag " + std::string(name) + ": counts " + quoted(counts) +
+                " are not of the form <ints>/<floats>[/<strings>]");
+    const bool crease = name == "crease";
+    const long long ints = count[0], floats = count[1];
+    const long long items = crease ? ints / 2 : ints;
+    if (items == 0 || (crease && ints % 2 != 0) || (floats != 1 && floats != items))
+        in.fail(crease ? "tag crease needs pairs of vertex indices and one sharpness, or one "
+                         "per pair (got " +
+                             std::string(counts) + ")"
+                       : "tag corner needs vertex indices and one sharpness, or one per vertex "
+                         "(got " +
+                             std::string(counts) + ")");
+    std::vector<Index> vertices;
+    for (long long i = 0; i < ints; ++i) {
+        in.skipBlanks();
+        const char* start = in.position();
+        std::int64_t index = 0;
+        const auto parsed = in.parseInt(index);
+        if (parsed == meshio::IntParse::NotAnInteger || !in.atDelimiter())
+            in.fail("tag " + std::string(name) + ": expected " + std::to_string(ints) +
+                    " vertex indices, got " + quoted(in.tokenAt(start)));
+        if (parsed == meshio::IntParse::OutOfRange || index < 0 || index > kMaxIndex)
+            in.fail("tag " + std::string(name) + ": vertex index " +
+                    std::string(in.tokenAt(start)) +
+                    " is out of range (tag indices are 0-based and not negative)");
+        vertices.push_back(static_cast<Index>(index));
+    }
+    std::vector<double> sharpness;
+    for (long long i = 0; i < floats; ++i) {
+        in.skipBlanks();
+        const char* start = in.position();
+        double value = 0.0;
+        if (in.atLineEnd() || !in.parseDouble(value))
+            in.fail("tag " + std::string(name) + ": expected " + std::to_string(floats) +
+                    " sharpness values, got " + quoted(in.tokenAt(start)));
+        if (!std::isfinite(value) || value < 0.0)
+            in.fail("tag " + std::string(name) + ": sharpness " + std::string(in.tokenAt(start)) +
+                    " is not a finite number >= 0");
+        sharpness.push_back(value);
+    }
+    in.skipStatement(); // string arguments, if any
+    for (long long i = 0; i < items; ++i) {
+        const double s = sharpness[floats == 1 ? 0 : static_cast<size_t>(i)];
+        if (crease) {
+            const Index a = vertices[static_cast<size_t>(2 * i)];
+            const Index b = vertices[static_cast<size_t>(2 * i + 1)];
+            if (a == b)
+                in.fail("tag crease: edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                        ") joins a vertex to itself");
+            mesh.creases.push_back({a, b, s});
+            lines.crease.push_back(in.line());
+        } else {
+            mesh.cornerSharpness.emplace_back(vertices[static_cast<size_t>(i)], s);
+            lines.corner.push_back(in.line());
+        }
+    }
+}
+
+// Tag indices may point forward; checked once the whole file is read.
+void checkTags(const std::string& path, const PolygonMesh& mesh, const TagLines& lines) {
+    const Index vertexCount = mesh.vertexCount();
+    const auto outOfRange = [&](int line, Index v) {
+        throw MeshError(path, "line " + std::to_string(line),
+                        "tag vertex index " + std::to_string(v) +
+                            " is out of range (tag indices are 0-based; the file has " +
+                            std::to_string(vertexCount) + " vertices)");
+    };
+    for (size_t i = 0; i < mesh.cornerSharpness.size(); ++i)
+        if (mesh.cornerSharpness[i].first >= vertexCount)
+            outOfRange(lines.corner[i], mesh.cornerSharpness[i].first);
+    if (mesh.creases.empty())
+        return;
+    const auto key = [](Index a, Index b) {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+               static_cast<std::uint32_t>(std::max(a, b));
+    };
+    std::unordered_set<std::uint64_t> edges;
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+        const auto corners = mesh.face(f);
+        for (size_t k = 0; k < corners.size(); ++k)
+            edges.insert(key(corners[k], corners[(k + 1) % corners.size()]));
+    }
+    for (size_t i = 0; i < mesh.creases.size(); ++i) {
+        const auto& c = mesh.creases[i];
+        if (c.a >= vertexCount)
+            outOfRange(lines.crease[i], c.a);
+        if (c.b >= vertexCount)
+            outOfRange(lines.crease[i], c.b);
+        if (!edges.contains(key(c.a, c.b)))
+            throw MeshError(path, "line " + std::to_string(lines.crease[i]),
+                            "tag crease: vertices " + std::to_string(c.a) + " and " +
+                                std::to_string(c.b) +
+                                " (0-based) are not joined by an edge of any face");
+    }
+}
+
 } // namespace
 
 PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
@@ -162,6 +300,7 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
     PolygonMesh mesh;
     std::vector<int> vertexLines, faceLines;
     std::vector<Index> corners;
+    TagLines tagLines;
     ObjCursor in(path, file.view());
 
     for (; !in.atEnd(); in.nextLine()) {
@@ -220,8 +359,10 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
                         " in all are supported)");
             mesh.addFace(corners);
             faceLines.push_back(line);
+        } else if (keyword == "t") {
+            readTag(in, mesh, tagLines);
         } else {
-            // vt, vn, vp, o, g, s, usemtl, mtllib, l, p, t (crease tags) and
+            // vt, vn, vp, o, g, s, usemtl, mtllib, l, p and
             // other keywords carry nothing the workbench uses. Anything that
             // is not a keyword means this is not an OBJ file.
             bool isKeyword = isAlpha(keyword.front());
@@ -243,6 +384,7 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
                                 "face index " + std::to_string(std::int64_t{v} + 1) +
                                     " is out of range (the file has " +
                                     std::to_string(vertexCount) + " vertices)");
+    checkTags(path, mesh, tagLines);
     if (source) {
         source->indexBase = 1;
         source->vertexLine = std::move(vertexLines);

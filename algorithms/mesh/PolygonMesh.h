@@ -5,6 +5,7 @@
 
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace contour {
@@ -15,6 +16,17 @@ public:
     // Faces in compressed form: face f is indices[offsets[f] .. offsets[f+1]).
     std::vector<Index> offsets{0};
     std::vector<Index> indices;
+
+    // Subdivision tags (OBJ "t crease" and "t corner"), used by the
+    // Catmull-Clark and Loop surfaces: sharpness of the edge between vertices
+    // a and b, and of single vertices, on OpenSubdiv's scale (0 smooth, 10 or
+    // more infinitely sharp).
+    struct EdgeCrease {
+        Index a, b;
+        double sharpness;
+    };
+    std::vector<EdgeCrease> creases;
+    std::vector<std::pair<Index, double>> cornerSharpness;
 
     Index vertexCount() const { return static_cast<Index>(positions.size()); }
     Index faceCount() const { return static_cast<Index>(offsets.size()) - 1; }

@@ -19,4 +19,19 @@ inline constexpr const char* kContourFace = "contour_face";
 // stored half-edge, or NaN when g does not change sign on it.
 inline constexpr const char* kZeroCrossing = "zero_crossing";
 
+// Smooth surfaces (contours/SurfacePhase.h, surface/SurfaceFields.h for the
+// sign conventions). Vertex, int: the domain face of the vertex's preimage.
+inline constexpr const char* kPreimageFace = "preimage_face";
+// Vertex, Vec3: (u, v, 0), the preimage's coordinates in that face.
+inline constexpr const char* kPreimageUv = "preimage_uv";
+// Face, int: the domain face of the smooth surface a triangle lies in.
+inline constexpr const char* kDomainFace = "domain_face";
+// Vertex, double: normal curvature along the view vector projected onto the
+// tangent plane; II = f_ij · n with outward n, so -1/R on a sphere and < 0 at
+// an ordinary exterior contour; NaN where the view is along the normal.
+inline constexpr const char* kRadialCurvature = "radial_curvature";
+// Vertex, double: Gaussian (+1/R^2 on a sphere) and mean (-1/R) curvature.
+inline constexpr const char* kGaussianCurvature = "gaussian_curvature";
+inline constexpr const char* kMeanCurvature = "mean_curvature";
+
 } // namespace contour::fields
