@@ -1,8 +1,8 @@
 #pragma once
 // The colours the views use, in one place so that tests can look for them in
-// grabbed images. Faces are coloured by the face field fields::kFacing; the
-// two facing colours differ in hue (yellow against blue), which survives
-// shading because lighting only scales a colour.
+// grabbed images. Faces are coloured by the face field fields::kFacing (the
+// two facing colours differ in hue, yellow against blue, which survives
+// shading because lighting only scales a colour) or by a signed scalar field.
 #include <QColor>
 
 namespace contour {
@@ -27,6 +27,15 @@ inline constexpr SceneColor kContour2D{0.0, 0.0, 0.0};           // black on the
 inline constexpr SceneColor kBoundary{0.10, 0.70, 0.25};         // green
 inline constexpr SceneColor kIntersection{0.85, 0.20, 0.85};     // magenta
 inline constexpr SceneColor kFrustum{0.92, 0.92, 0.92};          // light grey
+// Signed scalar fields (DivergingColorMap.h): Moreland's cool-to-warm end
+// colours at -m and +m (the centre, 0, is a light grey, ~0.87), NaN in a
+// darker neutral grey. Contours are black over a scalar field, which has red
+// in it.
+inline constexpr SceneColor kDivergingNegative{0.230, 0.299, 0.754}; // blue, hue ~232°
+inline constexpr SceneColor kDivergingPositive{0.706, 0.016, 0.150}; // red, hue ~348°
+inline constexpr SceneColor kNanValue{0.40, 0.40, 0.40};
+inline constexpr SceneColor kContourOverField{0.0, 0.0, 0.0};
+inline constexpr SceneColor kScalarBarText{0.95, 0.95, 0.95};
 inline constexpr SceneColor kBackgroundTop{0.30, 0.30, 0.32};
 inline constexpr SceneColor kBackgroundBottom{0.10, 0.10, 0.11};
 

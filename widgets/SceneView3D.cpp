@@ -1,13 +1,21 @@
 #include "SceneView3D.h"
 
+#include "FieldLabels.h"
 #include "SnapshotToVtk.h"
 #include "VtkCameraConversion.h"
 
+#include <QFileInfo>
+#include <algorithm>
+#include <span>
 #include <vtkCamera.h>
 #include <vtkCellData.h>
+#include <vtkCoordinate.h>
+#include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
+#include <vtkTextProperty.h>
 
 namespace contour {
 
@@ -19,6 +27,45 @@ void setTableColor(vtkLookupTable* table, vtkIdType index, const SceneColor& col
 
 void setColor(vtkProperty* property, const SceneColor& color) {
     property->SetColor(color.r, color.g, color.b);
+}
+
+// A system font with Greek letters for the scalar bar's title (κr), which
+// VTK's embedded fonts may lack. Empty when there is none: the text then uses
+// VTK's embedded Arial.
+QString greekFontFile() {
+    static const QString path = [] {
+        for (const char* candidate :
+             {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+              "/usr/share/fonts/TTF/DejaVuSans.ttf", "/usr/share/fonts/dejavu/DejaVuSans.ttf"})
+            if (QFileInfo::exists(QString::fromLatin1(candidate)))
+                return QString::fromLatin1(candidate);
+        return QString();
+    }();
+    return path;
+}
+
+void setTextStyle(vtkTextProperty* text, int size) {
+    const SceneColor& color = sceneColors::kScalarBarText;
+    text->SetColor(color.r, color.g, color.b);
+    text->SetFontSize(size);
+    text->BoldOff();
+    text->ItalicOff();
+    text->ShadowOn();
+    if (const QString font = greekFontFile(); !font.isEmpty()) {
+        text->SetFontFamily(VTK_FONT_FILE);
+        text->SetFontFile(font.toLocal8Bit().constData());
+    }
+}
+
+// The scalar bar's box in normalized viewport coordinates: along the bottom,
+// centred (a horizontal bar leaves room for a long title), at least
+// kBarMarginPixels above the bottom edge so that the label of the NaN swatch,
+// drawn below the bar, fits.
+constexpr double kBarLeft = 0.18, kBarBottom = 0.03, kBarWidth = 0.64, kBarHeight = 0.14;
+constexpr double kBarMarginPixels = 34.0;
+
+double barBottom(int viewportHeight) {
+    return std::max(kBarBottom, kBarMarginPixels / std::max(1, viewportHeight));
 }
 
 } // namespace
@@ -73,11 +120,38 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     curveMapper_->UseLookupTableScalarRangeOn();
     curveMapper_->ScalarVisibilityOn();
     curveMapper_->SetRelativeCoincidentTopologyLineOffsetParameters(-2.0, -60.0);
+    // The same over a scalar field, whose map has red in it: black contours.
+    curveColorsOverField_->SetNumberOfTableValues(3);
+    curveColorsOverField_->SetTableRange(0.0, 2.0);
+    curveColorsOverField_->Build();
+    setTableColor(curveColorsOverField_, 0, sceneColors::kContourOverField);
+    setTableColor(curveColorsOverField_, 1, sceneColors::kBoundary);
+    setTableColor(curveColorsOverField_, 2, sceneColors::kIntersection);
     curveActor_->SetMapper(curveMapper_);
     curveActor_->GetProperty()->SetLineWidth(4.0f);
     curveActor_->GetProperty()->LightingOff();
     curveActor_->VisibilityOff();
     ren->AddActor(curveActor_);
+
+    fillDivergingLookupTable(fieldColors_, 1.0);
+    scalarBar_->SetLookupTable(fieldColors_);
+    scalarBar_->SetOrientationToHorizontal();
+    scalarBar_->SetNumberOfLabels(5); // -m, -m/2, 0, m/2, m
+    scalarBar_->SetLabelFormat("%-#6.3g");
+    scalarBar_->SetMaximumNumberOfColors(kDivergingTableSize);
+    scalarBar_->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+    scalarBar_->GetPositionCoordinate()->SetValue(kBarLeft, kBarBottom);
+    scalarBar_->GetPosition2Coordinate()->SetValue(kBarWidth, kBarHeight);
+    scalarBar_->UnconstrainedFontSizeOn();
+    scalarBar_->SetBarRatio(0.3);
+    setTextStyle(scalarBar_->GetTitleTextProperty(), 16);
+    setTextStyle(scalarBar_->GetLabelTextProperty(), 13);
+    setTextStyle(scalarBar_->GetAnnotationTextProperty(), 13);
+    scalarBar_->SetNanAnnotation("NaN");
+    scalarBar_->DrawNanAnnotationOff();
+    scalarBar_->PickableOff();
+    scalarBar_->VisibilityOff();
+    ren->AddActor2D(scalarBar_);
 
     frustumActor_->SetMapper(frustumMapper_);
     setColor(frustumActor_->GetProperty(), sceneColors::kFrustum);
@@ -100,18 +174,29 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
         meshData_ = meshToPolyData(*mesh_);
         meshMapper_->SetInputData(meshData_);
         meshActor_->VisibilityOn();
+        shownFieldValues_.reset();
+        shownArrayName_.clear();
+        shownNormals_.reset();
         updateFrustum();
     }
-    if (vtkSmartPointer<vtkIntArray> facing = facingToCellArray(snapshot)) {
-        meshData_->GetCellData()->SetScalars(facing);
-        meshMapper_->ScalarVisibilityOn();
-        showsFacing_ = true;
-    } else {
-        meshData_->GetCellData()->RemoveArray(kVtkFacingArray);
-        meshMapper_->ScalarVisibilityOff();
-        showsFacing_ = false;
+    snapshot_ = snapshot;
+    const auto normals = snapshot.fields.find(fields::kVertexNormal);
+    const std::shared_ptr<const Field> normalField =
+        normals == snapshot.fields.end() ? nullptr : normals->second;
+    if (normalField != shownNormals_ || !normalField) {
+        if (vtkSmartPointer<vtkDoubleArray> smooth = smoothSurfaceNormals(snapshot)) {
+            meshData_->GetPointData()->SetNormals(smooth);
+            shownNormals_ = normalField;
+        } else {
+            meshData_->GetPointData()->SetNormals(nullptr);
+            shownNormals_.reset();
+        }
     }
-    meshData_->Modified();
+    if (vtkSmartPointer<vtkIntArray> facing = facingToCellArray(snapshot))
+        meshData_->GetCellData()->SetScalars(facing);
+    else
+        meshData_->GetCellData()->RemoveArray(kVtkFacingArray);
+    updateColoring();
 
     if (snapshot.curves != curves_) {
         curves_ = snapshot.curves;
@@ -124,6 +209,102 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
     requestRender();
 }
 
+void SceneView3D::setColorField(const std::string& field) {
+    colorField_ = field.empty() ? std::string(fields::kFacing) : field;
+    if (!meshData_)
+        return;
+    updateColoring();
+    requestRender();
+}
+
+void SceneView3D::updateColoring() {
+    const std::string previousField = displayedField_;
+    const std::vector<std::string> previousFields = scalarFields_;
+    scalarFields_ = meshData_ ? scalarFieldNames(snapshot_) : std::vector<std::string>{};
+    const bool available =
+        std::find(scalarFields_.begin(), scalarFields_.end(), colorField_) != scalarFields_.end();
+    displayedField_ = available ? colorField_ : std::string(fields::kFacing);
+
+    const auto removeShownArray = [this] {
+        if (meshData_ && !shownArrayName_.empty()) {
+            meshData_->GetPointData()->RemoveArray(shownArrayName_.c_str());
+            meshData_->GetCellData()->RemoveArray(shownArrayName_.c_str());
+        }
+        shownArrayName_.clear();
+        shownFieldValues_.reset();
+    };
+
+    if (meshData_ && showsScalarField()) {
+        const std::shared_ptr<const Field>& field = snapshot_.fields.at(displayedField_);
+        if (field != shownFieldValues_) {
+            removeShownArray();
+            FieldLocation location = FieldLocation::Vertex;
+            vtkSmartPointer<vtkDoubleArray> values =
+                scalarFieldToArray(snapshot_, displayedField_, &location);
+            if (location == FieldLocation::Face)
+                meshData_->GetCellData()->AddArray(values);
+            else
+                meshData_->GetPointData()->AddArray(values);
+            shownArrayName_ = displayedField_;
+            shownFieldValues_ = field;
+            scalarRange_ = symmetricRange(std::span<const double>(
+                values->GetPointer(0), static_cast<size_t>(values->GetNumberOfTuples())));
+            fillDivergingLookupTable(fieldColors_, scalarRange_.halfWidth);
+        }
+        if (field->location == FieldLocation::Face) {
+            meshMapper_->SetScalarModeToUseCellFieldData();
+            meshMapper_->InterpolateScalarsBeforeMappingOff();
+        } else {
+            // Interpolating the scalar (not the colour) across a triangle
+            // keeps the map's colours exact inside it.
+            meshMapper_->SetScalarModeToUsePointFieldData();
+            meshMapper_->InterpolateScalarsBeforeMappingOn();
+        }
+        meshMapper_->SelectColorArray(displayedField_.c_str());
+        meshMapper_->SetLookupTable(fieldColors_);
+        meshMapper_->ScalarVisibilityOn();
+        showsFacing_ = false;
+        curveMapper_->SetLookupTable(curveColorsOverField_);
+        scalarBar_->SetTitle(fieldDisplayName(displayedField_).c_str());
+        scalarBar_->SetDrawNanAnnotation(scalarRange_.nanCount > 0);
+        scalarBar_->VisibilityOn();
+    } else {
+        removeShownArray();
+        showsFacing_ = meshData_ && meshData_->GetCellData()->GetArray(kVtkFacingArray);
+        meshMapper_->SetScalarModeToUseCellData();
+        meshMapper_->InterpolateScalarsBeforeMappingOff();
+        meshMapper_->SetLookupTable(facingColors_);
+        meshMapper_->SetScalarVisibility(showsFacing_);
+        curveMapper_->SetLookupTable(curveColors_);
+        scalarBar_->VisibilityOff();
+    }
+    if (meshData_)
+        meshData_->Modified();
+    if (displayedField_ != previousField || scalarFields_ != previousFields)
+        emit colorFieldsChanged();
+}
+
+bool SceneView3D::isScalarBarVisible() const {
+    return meshActor_->GetVisibility() && scalarBar_->GetVisibility();
+}
+
+std::string SceneView3D::scalarBarTitle() const {
+    const char* title = scalarBar_->GetTitle();
+    return title ? title : "";
+}
+
+QRect SceneView3D::scalarBarRect() const {
+    if (!isScalarBarVisible())
+        return {};
+    const QSize size = deviceSize();
+    const int left = static_cast<int>(kBarLeft * size.width());
+    const int right = static_cast<int>((kBarLeft + kBarWidth) * size.width());
+    const double y = barBottom(size.height());
+    const int bottom = size.height() - static_cast<int>(y * size.height());
+    const int top = size.height() - static_cast<int>((y + kBarHeight) * size.height());
+    return QRect(QPoint(left, top), QPoint(right - 1, bottom - 1));
+}
+
 long long SceneView3D::displayedFaceCount() const {
     return meshData_ && meshActor_->GetVisibility() ? meshData_->GetNumberOfPolys() : 0;
 }
@@ -131,6 +312,11 @@ long long SceneView3D::displayedFaceCount() const {
 void SceneView3D::clearScene() {
     mesh_.reset();
     meshData_ = nullptr;
+    snapshot_ = Snapshot();
+    shownFieldValues_.reset();
+    shownArrayName_.clear();
+    shownNormals_.reset();
+    updateColoring();
     curves_.reset();
     curveCount_ = 0;
     showsFacing_ = false;
@@ -189,6 +375,7 @@ bool SceneView3D::isFrustumVisible() const {
 }
 
 void SceneView3D::beforeRender() {
+    scalarBar_->GetPositionCoordinate()->SetValue(kBarLeft, barBottom(deviceSize().height()));
     const bool visible = isFrustumVisible();
     frustumActor_->SetVisibility(visible);
     renderer()->ResetCameraClippingRange();

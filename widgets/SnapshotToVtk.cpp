@@ -77,6 +77,75 @@ vtkSmartPointer<vtkIntArray> facingToCellArray(const Snapshot& snapshot) {
     return array;
 }
 
+namespace {
+
+// The field as scalars on the mesh's vertices or faces, or null.
+const std::vector<double>* meshScalars(const Snapshot& snapshot, const Field& field) {
+    const std::vector<double>* values = field.scalars();
+    if (!values || !snapshot.mesh)
+        return nullptr;
+    const auto size = static_cast<Index>(values->size());
+    if (field.location == FieldLocation::Vertex && size == snapshot.mesh->vertexCount())
+        return values;
+    if (field.location == FieldLocation::Face && size == snapshot.mesh->faceCount())
+        return values;
+    return nullptr;
+}
+
+} // namespace
+
+std::vector<std::string> scalarFieldNames(const Snapshot& snapshot) {
+    static const std::vector<std::string> known{fields::kG, fields::kRadialCurvature,
+                                                fields::kGaussianCurvature, fields::kMeanCurvature};
+    std::vector<std::string> names;
+    for (const std::string& name : known)
+        if (const Field* field = snapshot.field(name); field && meshScalars(snapshot, *field))
+            names.push_back(name);
+    // std::map: the others come in name order.
+    for (const auto& [name, field] : snapshot.fields)
+        if (field && meshScalars(snapshot, *field) &&
+            std::find(known.begin(), known.end(), name) == known.end())
+            names.push_back(name);
+    return names;
+}
+
+vtkSmartPointer<vtkDoubleArray>
+scalarFieldToArray(const Snapshot& snapshot, const std::string& name, FieldLocation* location) {
+    const Field* field = snapshot.field(name);
+    const std::vector<double>* values = field ? meshScalars(snapshot, *field) : nullptr;
+    if (!values)
+        return nullptr;
+    auto array = vtkSmartPointer<vtkDoubleArray>::New();
+    array->SetName(name.c_str());
+    array->SetNumberOfTuples(static_cast<vtkIdType>(values->size()));
+    std::copy(values->begin(), values->end(), array->GetPointer(0));
+    if (location)
+        *location = field->location;
+    return array;
+}
+
+vtkSmartPointer<vtkDoubleArray> smoothSurfaceNormals(const Snapshot& snapshot) {
+    const Field* normals = snapshot.field(fields::kVertexNormal);
+    const Field* preimages = snapshot.field(fields::kPreimageFace);
+    if (!snapshot.mesh || !normals || !preimages || !normals->vectors() ||
+        normals->location != FieldLocation::Vertex ||
+        preimages->location != FieldLocation::Vertex ||
+        static_cast<Index>(normals->vectors()->size()) != snapshot.mesh->vertexCount())
+        return nullptr;
+    const std::vector<Vec3>& values = *normals->vectors();
+    auto array = vtkSmartPointer<vtkDoubleArray>::New();
+    array->SetName("Normals");
+    array->SetNumberOfComponents(3);
+    array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+    double* out = array->GetPointer(0);
+    for (const Vec3& n : values) {
+        *out++ = n.x();
+        *out++ = n.y();
+        *out++ = n.z();
+    }
+    return array;
+}
+
 vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curves) {
     std::vector<Vec3> positions;
     std::vector<vtkIdType> offsets{0};

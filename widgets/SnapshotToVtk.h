@@ -4,9 +4,11 @@
 #include "camera/Camera.h"
 #include "pipeline/Snapshot.h"
 
+#include <string>
 #include <vector>
 #include <vtkSmartPointer.h>
 
+class vtkDoubleArray;
 class vtkIntArray;
 class vtkPolyData;
 
@@ -24,6 +26,23 @@ vtkSmartPointer<vtkPolyData> meshToPolyData(const TriangleMesh& mesh);
 // kVtkFacingArray (+1 front, -1 back, 0 edge-on), or null when the snapshot
 // has no facing field yet or it does not match the mesh.
 vtkSmartPointer<vtkIntArray> facingToCellArray(const Snapshot& snapshot);
+
+// The double fields of `snapshot` on the mesh's vertices or faces whose size
+// matches the mesh: the ones a view can colour by. Known fields first (g,
+// radial, Gaussian, mean curvature), then the others by name.
+std::vector<std::string> scalarFieldNames(const Snapshot& snapshot);
+
+// The scalar field `name` (one of scalarFieldNames) as an array named `name`
+// holding one value per vertex or per face (see `location`), or null.
+vtkSmartPointer<vtkDoubleArray> scalarFieldToArray(const Snapshot& snapshot,
+                                                   const std::string& name,
+                                                   FieldLocation* location = nullptr);
+
+// The exact unit normals of a tessellated smooth surface (fields::kVertexNormal
+// on a mesh whose vertices have preimages, fields::kPreimageFace) as a point
+// array for smooth shading, or null: a plain triangle mesh is drawn with its
+// flat faces.
+vtkSmartPointer<vtkDoubleArray> smoothSurfaceNormals(const Snapshot& snapshot);
 
 // The curves as polylines (a closed curve repeats its first point) with the
 // cell array kVtkCurveTypeArray holding static_cast<int>(CurveType).

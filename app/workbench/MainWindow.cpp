@@ -1,5 +1,6 @@
 #include "MainWindow.h"
 
+#include "FieldLabels.h"
 #include "ImageView2D.h"
 #include "MethodPanel.h"
 #include "PhaseStepper.h"
@@ -7,10 +8,12 @@
 #include "contours/Methods.h"
 #include "mesh/MeshError.h"
 #include "mesh/MeshReader.h"
+#include "pipeline/FieldNames.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QComboBox>
 #include <QDockWidget>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -55,6 +58,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(stepper_, &PhaseStepper::resetRequested, this, &MainWindow::resetPhases);
     connect(stepper_, &PhaseStepper::runToEndRequested, this, &MainWindow::runToEnd);
     connect(sceneView_, &SceneView3D::viewMatchChanged, this, &MainWindow::updateActions);
+    connect(sceneView_, &SceneView3D::colorFieldsChanged, this, &MainWindow::updateColorSelector);
+    // currentIndexChanged for programmatic changes, activated for the user
+    // picking the entry already shown (e.g. facing while a remembered field
+    // is missing), so that it becomes the choice.
+    connect(colorSelector_, &QComboBox::currentIndexChanged, this, &MainWindow::onColorSelected);
+    connect(colorSelector_, &QComboBox::activated, this, &MainWindow::onColorSelected);
+    updateColorSelector();
     stepper_->setMethod(methodPanel_->method());
     updateActions();
     updateStatus();
@@ -68,7 +78,9 @@ MainWindow::~MainWindow() {
 void MainWindow::createLayout() {
     sceneView_ = new SceneView3D(this);
     sceneView_->setToolTip(tr("3D view: drag to orbit (left), pan (middle, shift+left), zoom "
-                              "(right, wheel). Faces: yellow front, blue back; curves red."));
+                              "(right, wheel). Faces: yellow front, blue back; curves red. "
+                              "Coloured by a scalar field: blue negative, red positive, grey "
+                              "NaN; curves black."));
     imageView_ = new ImageView2D(this);
     splitter_ = new QSplitter(Qt::Horizontal, this);
     splitter_->addWidget(sceneView_);
@@ -145,6 +157,22 @@ void MainWindow::createActions() {
     tools->addSeparator();
     tools->addAction(cameraFromViewAction_);
     tools->addAction(viewToCameraAction_);
+
+    QToolBar* display = addToolBar(tr("Display"));
+    display->setObjectName(QStringLiteral("displayToolBar"));
+    auto* colorLabel = new QLabel(tr(" Colour by: "), display);
+    colorSelector_ = new QComboBox(display);
+    colorSelector_->setObjectName(QStringLiteral("colorBySelector"));
+    // Wide enough for "radial curvature κr", so the tool bar does not jump.
+    colorSelector_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    colorSelector_->setMinimumContentsLength(22);
+    colorSelector_->setToolTip(
+        tr("What the 3D view colours the surface by: front/back faces, or a signed scalar field "
+           "of the current phase on a symmetric blue-white-red map centred on 0 (range ±m, m = "
+           "98th percentile of |value|; NaN grey)"));
+    colorLabel->setBuddy(colorSelector_);
+    display->addWidget(colorLabel);
+    display->addWidget(colorSelector_);
 }
 
 void MainWindow::openFileDialog() {
@@ -451,6 +479,42 @@ void MainWindow::showRunnerState() {
     sceneView_->setSnapshot(snapshot);
     imageView_->setScene(snapshot, runner_->camera());
     stepper_->setSnapshots(runner_->snapshots());
+}
+
+bool MainWindow::setColorField(const QString& field) {
+    sceneView_->setColorField(field.toStdString());
+    return sceneView_->displayedColorField() == sceneView_->colorField();
+}
+
+QString MainWindow::colorField() const {
+    return QString::fromStdString(sceneView_->displayedColorField());
+}
+
+void MainWindow::updateColorSelector() {
+    updatingColorSelector_ = true;
+    std::vector<std::string> names{fields::kFacing};
+    const std::vector<std::string>& scalars = sceneView_->scalarFields();
+    names.insert(names.end(), scalars.begin(), scalars.end());
+    const Snapshot& snapshot = sceneView_->snapshot();
+    colorSelector_->clear();
+    for (const std::string& name : names) {
+        colorSelector_->addItem(QString::fromStdString(fieldDisplayName(name)),
+                                QString::fromStdString(name));
+        const Field* field = snapshot.field(name);
+        if (field && !field->description.empty())
+            colorSelector_->setItemData(colorSelector_->count() - 1,
+                                        QString::fromStdString(field->description),
+                                        Qt::ToolTipRole);
+    }
+    colorSelector_->setCurrentIndex(std::max(
+        0, colorSelector_->findData(QString::fromStdString(sceneView_->displayedColorField()))));
+    updatingColorSelector_ = false;
+}
+
+void MainWindow::onColorSelected(int index) {
+    if (updatingColorSelector_ || index < 0)
+        return;
+    sceneView_->setColorField(colorSelector_->itemData(index).toString().toStdString());
 }
 
 void MainWindow::updateActions() {

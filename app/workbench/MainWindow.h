@@ -5,8 +5,8 @@
 //
 // Layout: the 3D scene view and the 2D image view side by side in a
 // splitter, a dock with the method panel and the phase stepper on the left,
-// a status bar. The small public API below is what the menus call, and what
-// tests drive.
+// a "Display" tool bar with the 3D view's "Colour by" selector, a status bar. The small public API
+// below is what the menus call, and what tests drive.
 #include "camera/Camera.h"
 #include "mesh/PolygonMesh.h"
 #include "pipeline/Runner.h"
@@ -21,6 +21,7 @@
 #include <optional>
 
 class QAction;
+class QComboBox;
 class QLabel;
 class QProgressBar;
 class QSplitter;
@@ -80,6 +81,15 @@ public:
     std::optional<Camera> analysisCamera() const { return camera_; }
     QString lastError() const { return lastError_; }
 
+    // What the 3D view colours the mesh by: "facing" (front/back) or a scalar
+    // field of the snapshot (SceneView3D::setColorField). False when the
+    // current snapshot has no such field (the choice is still remembered).
+    bool setColorField(const QString& field);
+    // The field the 3D view shows.
+    QString colorField() const;
+    // Its selector: item data is the field name, text the readable name.
+    QComboBox* colorSelector() const { return colorSelector_; }
+
     SceneView3D* sceneView() const { return sceneView_; }
     ImageView2D* imageView() const { return imageView_; }
     PhaseStepper* phaseStepper() const { return stepper_; }
@@ -122,6 +132,10 @@ private:
     void showRunnerState();
     void updateActions();
     void updateStatus();
+    // Lists facing and the 3D view's scalar fields in the selector and
+    // selects the one it shows.
+    void updateColorSelector();
+    void onColorSelected(int index);
 
     SceneView3D* sceneView_ = nullptr;
     ImageView2D* imageView_ = nullptr;
@@ -131,6 +145,8 @@ private:
     QLabel* meshLabel_ = nullptr;
     QLabel* phaseLabel_ = nullptr;
     QProgressBar* busyBar_ = nullptr;
+    QComboBox* colorSelector_ = nullptr;
+    bool updatingColorSelector_ = false;
 
     QAction* openAction_ = nullptr;
     QAction* stepAction_ = nullptr;
