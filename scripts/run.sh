@@ -12,7 +12,7 @@ fi
 out=out/run-$(date +%Y%m%d-%H%M%S)
 mkdir -p "$out"
 echo "run: no display (DISPLAY is not set): running the batch CLI on $sample instead"
-build/app/batch/contour-batch --mesh "$sample" --method interpolated \
+build/app/batch/contour-batch --mesh "$sample" --method interpolated --surface auto \
   --svg "$out/spot_control_mesh.svg" --json "$out/spot_control_mesh.json" "$@"
 echo "run: SVG written to $PWD/$out/spot_control_mesh.svg"
 echo "run: JSON report written to $PWD/$out/spot_control_mesh.json"
