@@ -4,6 +4,7 @@
 #include "camera/Facing.h"
 #include "contours/BoundaryCurves.h"
 #include "contours/ContourChaining.h"
+#include "contours/EdgePolylines.h"
 #include "contours/FacingPhase.h"
 #include "contours/Methods.h"
 #include "contours/SurfacePhase.h"
@@ -158,8 +159,7 @@ void chainSegmentsAcrossEdges(const PhaseContext& ctx, Snapshot& s) {
     }
     ctx.checkCancelled();
     const std::vector<Chain> chains = chainSegments(segments, mesh.edgeCount());
-    auto lines = std::make_shared<std::vector<Polyline>>();
-    long long loops = 0;
+    std::vector<Polyline> lines;
     for (const Chain& chain : chains) {
         Polyline line;
         line.type = CurveType::Contour;
@@ -174,18 +174,9 @@ void chainSegmentsAcrossEdges(const PhaseContext& ctx, Snapshot& s) {
         }
         for (Index seg : chain.segments)
             line.segmentElement.push_back(segments[seg].element);
-        loops += chain.closed;
-        lines->push_back(std::move(line));
+        lines.push_back(std::move(line));
     }
-    s.setCounter("contour chains", static_cast<double>(chains.size()));
-    s.setCounter("closed loops", static_cast<double>(loops));
-    s.setCounter("open chains", static_cast<double>(chains.size() - loops));
-    if (ctx.parameters.getBool("include-boundaries")) {
-        auto boundary = boundaryPolylines(mesh);
-        s.setCounter("boundary curves", static_cast<double>(boundary.size()));
-        lines->insert(lines->end(), boundary.begin(), boundary.end());
-    }
-    s.curves = std::move(lines);
+    publishCurves(ctx, s, std::move(lines));
 }
 
 std::vector<InvariantCheck> checkChains(const PhaseContext&, const Snapshot& s) {

@@ -2,7 +2,7 @@
 // and C): edges between a front face and a back face of the triangle mesh.
 #include "camera/Facing.h"
 #include "contours/BoundaryCurves.h"
-#include "contours/ContourChaining.h"
+#include "contours/EdgePolylines.h"
 #include "contours/FacingPhase.h"
 #include "contours/Methods.h"
 #include "contours/SurfacePhase.h"
@@ -94,50 +94,25 @@ void chainContourEdges(const PhaseContext& ctx, Snapshot& s) {
     const TriangleMesh& mesh = *s.mesh;
     const std::vector<int>& label = *s.field(fields::kContourEdge)->labels();
     const bool dropConcave = ctx.parameters.getBool("drop-concave");
-    std::vector<ChainSegment> segments;
+    std::vector<Index> edges;
+    std::vector<int> degree(mesh.vertexCount(), 0);
     for (Index e = 0; e < mesh.edgeCount(); ++e) {
         if (label[e] == kNotContour || (dropConcave && label[e] == kConcaveContour))
             continue;
+        edges.push_back(e);
         const Index h = mesh.edgeHalfedge(e);
-        segments.push_back({mesh.from(h), mesh.to(h), e});
-    }
-    const std::vector<Chain> chains = chainSegments(segments, mesh.vertexCount());
-    auto lines = std::make_shared<std::vector<Polyline>>();
-    long long loops = 0;
-    for (const Chain& chain : chains) {
-        Polyline line;
-        line.type = CurveType::Contour;
-        line.closed = chain.closed;
-        line.source = SegmentSource::MeshEdge;
-        for (Index v : chain.nodes)
-            line.points.push_back({mesh.position(v), v, kInvalidIndex, 0.0});
-        for (Index seg : chain.segments)
-            line.segmentElement.push_back(segments[seg].element);
-        loops += chain.closed;
-        lines->push_back(std::move(line));
-    }
-    std::vector<int> degree(mesh.vertexCount(), 0);
-    for (const ChainSegment& seg : segments) {
-        ++degree[seg.nodeA];
-        ++degree[seg.nodeB];
+        ++degree[mesh.from(h)];
+        ++degree[mesh.to(h)];
     }
     long long bifurcations = 0;
     for (int d : degree)
         bifurcations += d > 2;
-    s.setCounter("contour chains", static_cast<double>(chains.size()));
-    s.setCounter("closed loops", static_cast<double>(loops));
-    s.setCounter("open chains", static_cast<double>(chains.size() - loops));
     s.setCounter("bifurcation vertices", static_cast<double>(bifurcations));
-    if (ctx.parameters.getBool("include-boundaries")) {
-        auto boundary = boundaryPolylines(mesh);
-        s.setCounter("boundary curves", static_cast<double>(boundary.size()));
-        lines->insert(lines->end(), boundary.begin(), boundary.end());
-    }
     if (bifurcations > 0)
         s.notes.push_back(std::to_string(bifurcations) +
                           " vertices join more than two contour edges (bifurcations, tutorial "
                           "§4.3): chains stop there");
-    s.curves = std::move(lines);
+    publishCurves(ctx, s, edgePolylines(mesh, edges, CurveType::Contour));
 }
 
 std::vector<InvariantCheck> checkChains(const PhaseContext& ctx, const Snapshot& s) {

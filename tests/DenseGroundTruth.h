@@ -1,0 +1,127 @@
+#pragma once
+// An independent, dense answer for the topology of the smooth contour
+// generator (issue 4, "Validation against an independent answer"; notes on
+// Bénard 2014 §6.1 item 11). It shares only the SmoothSurface evaluation and
+// SurfaceFields (g and the radial curvature) with the workbench: no contour
+// method, no chaining code.
+//
+// What it does, per domain face of the surface:
+//   - samples g = (c - f(u)) · n(u) on a lattice with N steps per side (quads:
+//     the (N+1)^2 grid; triangles: the triangular lattice i + j <= N, split
+//     into N^2 small triangles);
+//   - extracts g = 0 by marching squares (quads; saddle cells decided by the
+//     asymptotic decider of the bilinear interpolant) and marching triangles,
+//     with g > 0 front and g <= 0 back (the interpolated method's rule);
+//   - places each crossing on its lattice edge by linear interpolation, then
+//     refines it with a few regula-falsi steps on the true g.
+// Lattice points on a shared domain edge or corner are one global sample
+// (numbered by domain topology, evaluated once), and a crossing on a lattice
+// edge is computed once for the edge (in the lowest-numbered face that has
+// it), so both faces see identical values and positions and loops close.
+// Cusps are the points of a loop where the radial curvature, evaluated at the
+// refined crossings, changes sign (NaN values are skipped).
+//
+// Known limits: loops entirely inside one lattice cell, and pairs of close
+// contour branches crossing one lattice edge twice, are missed (the
+// "sub-triangle loops" of Bénard 2014's simplified orientation, at the
+// lattice's scale); a cusp pair closer than one lattice step along a loop can
+// cancel out; cusps are located only to within one lattice segment.
+#include "camera/Camera.h"
+#include "pipeline/Snapshot.h"
+#include "surface/SmoothSurface.h"
+
+#include <memory>
+#include <vector>
+
+namespace contour::testing {
+
+struct GroundTruthOptions {
+    int samples = 64;    // lattice steps N per domain face side
+    int refineSteps = 4; // regula-falsi steps on the true g per crossing (0: linear only)
+};
+
+struct GroundTruthCusp {
+    Vec3 position = Vec3::Zero();
+    int loop = -1;
+};
+
+struct GroundTruthLoop {
+    bool closed = false;
+    std::vector<Vec3> points;            // refined crossings, in order
+    std::vector<Preimage> preimages;     // the same, as preimages
+    std::vector<double> radialCurvature; // at each point, NaN where undefined
+    std::vector<Index> faces;            // domain faces crossed, sorted, unique
+    int cusps = 0;
+};
+
+struct GroundTruth {
+    int samples = 0;
+    std::vector<GroundTruthLoop> loops;
+    std::vector<GroundTruthCusp> cusps;
+    double seconds = 0.0; // time of compute() for this view
+
+    int closedLoops() const;
+    int openLoops() const { return static_cast<int>(loops.size()) - closedLoops(); }
+};
+
+// Samples the view-independent part (positions and unit normals at every
+// lattice point) once; compute() then extracts the contour for any camera.
+class DenseGroundTruth {
+public:
+    DenseGroundTruth(std::shared_ptr<const SmoothSurface> surface, GroundTruthOptions options = {});
+
+    const SmoothSurface& surface() const { return *surface_; }
+    const GroundTruthOptions& options() const { return options_; }
+    double samplingSeconds() const { return samplingSeconds_; }
+    size_t sampleCount() const { return positions_.size(); }
+
+    GroundTruth compute(const Camera& camera) const;
+
+private:
+    // Global sample index of lattice point (i, j) of face f.
+    Index node(Index f, int i, int j) const;
+
+    std::shared_ptr<const SmoothSurface> surface_;
+    GroundTruthOptions options_;
+    double samplingSeconds_ = 0.0;
+    // Numbering: domain vertices, then N - 1 per domain edge (from its lower
+    // vertex), then each face's interior points.
+    std::vector<Index> faceEdge_;       // 4 per face: global edge of local edge e
+    std::vector<Index> edgeLow_;        // per global edge, its lower vertex
+    std::vector<Index> interiorOffset_; // per face, first interior sample
+    std::vector<Vec3> positions_;
+    std::vector<Vec3> normals_;
+};
+
+// The topology of a method's contour (a snapshot with curves, and the
+// per-face field domain_face of the surface phase) against the ground truth.
+// Loops are matched greedily by the overlap (Jaccard index) of their sets of
+// crossed domain faces.
+struct TopologyComparison {
+    int truthLoops = 0, truthOpenLoops = 0;
+    int methodLoops = 0, methodOpenLoops = 0;
+    int matchedLoops = 0;     // pairs with at least one common face
+    int sameFaceLoops = 0;    // matched pairs whose face sets are equal
+    double meanJaccard = 0.0; // over truth loops (unmatched count 0); 1 if none
+    int truthCusps = 0;
+    int methodCusps = -1; // the snapshot's "cusps" counter, -1 when it has none
+
+    bool loopCountsMatch() const {
+        return truthLoops == methodLoops && truthOpenLoops == methodOpenLoops;
+    }
+    bool faceSetsMatch() const { return loopCountsMatch() && sameFaceLoops == truthLoops; }
+    bool cuspCountsMatch() const { return methodCusps == truthCusps; }
+};
+
+// The domain faces each contour polyline of the snapshot crosses (sorted,
+// unique): per segment, the domain face of its triangle (segments from
+// faces), or of both triangles on its edge (segments on mesh edges).
+struct MethodLoop {
+    bool closed = false;
+    std::vector<Index> faces;
+};
+std::vector<MethodLoop> methodLoops(const Snapshot& snapshot);
+
+TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot);
+
+} // namespace contour::testing

@@ -1,0 +1,216 @@
+// The dense ground truth of the smooth contour's topology (DenseGroundTruth.h,
+// issue 4 "Validation against an independent answer"): first its own sanity
+// on shapes whose answer is known analytically, then the interpolated method
+// on Catmull-Clark surfaces compared with it, view by view.
+#include "ContourTestSupport.h"
+#include "DenseGroundTruth.h"
+#include "camera/Facing.h"
+#include "mesh/MeshReader.h"
+#include "surface/SmoothSurfaceFactory.h"
+
+#include <QtTest>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+using namespace contour;
+using namespace contour::testing;
+
+namespace {
+
+std::shared_ptr<const SmoothSurface> catmullClark(const std::shared_ptr<const PolygonMesh>& cage) {
+    // Through the cache, so that the method's surface phase sees the very same
+    // surface (and domain face numbering) as the ground truth.
+    return cachedSmoothSurface(cage, SurfaceKind::CatmullClark).surface;
+}
+
+Camera lookingFrom(const BoundingBox& box, const Vec3& direction) {
+    return Camera::framing(box, direction, Viewport{800, 600});
+}
+
+std::shared_ptr<const PolygonMesh> spotCage() {
+    const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
+    return std::make_shared<const PolygonMesh>(readMesh(path));
+}
+
+} // namespace
+
+class TestGroundTruth : public QObject {
+    Q_OBJECT
+
+private slots:
+    void sphereHasOneLoopAndNoCusp();
+    void ellipsoidHasOneLoop();
+    void torusFromAboveHasTwoLoopsAndNoCusp();
+    void torusFromTheSideHasTwoLoopsAndCusps();
+    void sharedEdgesCloseLoops();
+    void interpolatedAgainstGroundTruth_data();
+    void interpolatedAgainstGroundTruth();
+    void timingOnSpot();
+};
+
+void TestGroundTruth::sphereHasOneLoopAndNoCusp() {
+    const auto cage = shape("sphere", 16);
+    const DenseGroundTruth dense(catmullClark(cage));
+    for (const Camera& camera : Camera::views26(cage->boundingBox(), Viewport{800, 600})) {
+        const GroundTruth truth = dense.compute(camera);
+        QCOMPARE(int(truth.loops.size()), 1);
+        QCOMPARE(truth.closedLoops(), 1);
+        QCOMPARE(int(truth.cusps.size()), 0);
+    }
+    // Random views: still one loop, but the Catmull-Clark limit surface of
+    // this cage is not convex everywhere. Around the valence-16 extraordinary
+    // vertices at the poles it has a ring of negative Gaussian curvature
+    // (Catmull-Clark does not preserve convexity at high valence; checked
+    // against finite differences of the limit positions), so a contour that
+    // passes through that ring has real cusps. Every cusp must lie there.
+    const std::vector<Camera> views = protocolViews(cage->boundingBox(), 10);
+    int cusps = 0;
+    for (size_t v = 26; v < views.size(); ++v) {
+        const GroundTruth truth = dense.compute(views[v]);
+        QCOMPARE(int(truth.loops.size()), 1);
+        QCOMPARE(truth.closedLoops(), 1);
+        for (const GroundTruthCusp& cusp : truth.cusps)
+            QVERIFY2(std::abs(cusp.position.z()) > 0.9, "a cusp away from the poles");
+        cusps += int(truth.cusps.size());
+    }
+    qInfo("sphere, 10 random views: %d cusps, all in the hyperbolic ring around a pole", cusps);
+}
+
+void TestGroundTruth::ellipsoidHasOneLoop() {
+    const auto cage = shape("ellipsoid", 16);
+    const DenseGroundTruth dense(catmullClark(cage));
+    for (const Camera& camera : protocolViews(cage->boundingBox(), 10)) {
+        const GroundTruth truth = dense.compute(camera);
+        QCOMPARE(int(truth.loops.size()), 1);
+        QCOMPARE(truth.closedLoops(), 1);
+        QCOMPARE(int(truth.cusps.size()), 0);
+    }
+}
+
+void TestGroundTruth::torusFromAboveHasTwoLoopsAndNoCusp() {
+    // The torus turns around the z axis: seen along it, the outer and the
+    // inner silhouette circles, with constant radial curvature on each.
+    const auto cage = shape("torus", 16);
+    const DenseGroundTruth dense(catmullClark(cage));
+    for (const Vec3& axis : {Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+        const GroundTruth truth = dense.compute(lookingFrom(cage->boundingBox(), axis));
+        QCOMPARE(int(truth.loops.size()), 2);
+        QCOMPARE(truth.closedLoops(), 2);
+        QCOMPARE(int(truth.cusps.size()), 0);
+    }
+}
+
+void TestGroundTruth::torusFromTheSideHasTwoLoopsAndCusps() {
+    const auto cage = shape("torus", 16);
+    const DenseGroundTruth dense(catmullClark(cage));
+    for (const Vec3& direction : {Vec3(1, 0.3, 0.5), Vec3(-0.4, 1, 0.35), Vec3(1, 1, -0.6)}) {
+        const GroundTruth truth = dense.compute(lookingFrom(cage->boundingBox(), direction));
+        qInfo("torus from (%g, %g, %g): %d loops, %d cusps", direction.x(), direction.y(),
+              direction.z(), int(truth.loops.size()), int(truth.cusps.size()));
+        QCOMPARE(int(truth.loops.size()), 2);
+        QCOMPARE(truth.closedLoops(), 2);
+        QVERIFY(!truth.cusps.empty());
+        QCOMPARE(int(truth.cusps.size()) % 2, 0);
+        // Cusps pair up on a loop (the radial curvature changes sign and back).
+        for (const GroundTruthLoop& loop : truth.loops)
+            QCOMPARE(loop.cusps % 2, 0);
+    }
+}
+
+void TestGroundTruth::sharedEdgesCloseLoops() {
+    // Every loop of a closed surface closes, at coarse and fine lattices, and
+    // the loop count does not depend on the lattice once it resolves the
+    // contour. Also: the refined crossings lie on g = 0.
+    const auto cage = shape("bumpy-torus", 24);
+    const Camera camera = lookingFrom(cage->boundingBox(), Vec3(0.7, -0.4, 0.6));
+    std::vector<int> counts;
+    for (int samples : {8, 16, 32}) {
+        const DenseGroundTruth dense(catmullClark(cage), {samples, 4});
+        const GroundTruth truth = dense.compute(camera);
+        QCOMPARE(truth.openLoops(), 0);
+        counts.push_back(int(truth.loops.size()));
+        double worst = 0.0;
+        for (const GroundTruthLoop& loop : truth.loops)
+            for (const Preimage& p : loop.preimages) {
+                const SurfacePoint sp = dense.surface().evaluate(p);
+                const double scale = camera.toCamera(sp.position).norm();
+                worst = std::max(worst, std::abs(facingFunction(camera, sp.position, sp.normal())) /
+                                            scale);
+            }
+        qInfo("bumpy torus, N = %d: %d loops, %d cusps, worst |g|/|c - p| at crossings %.2e",
+              samples, counts.back(), int(truth.cusps.size()), worst);
+        QVERIFY(worst < 1e-3);
+    }
+    QCOMPARE(counts[1], counts[2]);
+}
+
+void TestGroundTruth::interpolatedAgainstGroundTruth_data() {
+    QTest::addColumn<QString>("name");
+    QTest::addColumn<int>("resolution");
+    QTest::addColumn<bool>("assertLoops");
+    QTest::newRow("sphere") << QString("sphere") << 16 << true;
+    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << true;
+    QTest::newRow("torus") << QString("torus") << 16 << true;
+    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << false;
+    QTest::newRow("spot") << QString("spot") << 0 << false;
+}
+
+void TestGroundTruth::interpolatedAgainstGroundTruth() {
+    QFETCH(QString, name);
+    QFETCH(int, resolution);
+    QFETCH(bool, assertLoops);
+    const auto cage = name == "spot" ? spotCage() : shape(name.toStdString(), resolution);
+    const DenseGroundTruth dense(catmullClark(cage));
+    ParameterSet parameters;
+    parameters.set("surface", std::string("catmull-clark"));
+    parameters.set("tessellation-level", 8);
+    const std::vector<Camera> views = protocolViews(cage->boundingBox(), 10);
+    int sameLoops = 0, sameFaces = 0, truthCusps = 0;
+    double jaccard = 0.0;
+    for (size_t v = 0; v < views.size(); ++v) {
+        const GroundTruth truth = dense.compute(views[v]);
+        const Snapshot snapshot = runMethod("interpolated", cage, views[v], parameters);
+        const TopologyComparison c = compareTopology(truth, snapshot);
+        sameLoops += c.loopCountsMatch();
+        sameFaces += c.faceSetsMatch();
+        truthCusps += c.truthCusps;
+        jaccard += c.meanJaccard;
+        if (!c.loopCountsMatch() || !c.faceSetsMatch())
+            qInfo("%s view %d: ground truth %d loops (%d open, %d cusps), interpolated %d loops "
+                  "(%d open); %d matched, %d with the same faces, mean Jaccard %.3f",
+                  qPrintable(name), int(v), c.truthLoops, c.truthOpenLoops, c.truthCusps,
+                  c.methodLoops, c.methodOpenLoops, c.matchedLoops, c.sameFaceLoops, c.meanJaccard);
+        if (assertLoops)
+            QCOMPARE(c.methodLoops, c.truthLoops);
+    }
+    const int n = int(views.size());
+    qInfo("%s (%d domain faces, N = %d, interpolated at level 8): loop counts match in %d/%d "
+          "views (%.0f%%), crossed-face sets match in %d/%d (%.0f%%), mean Jaccard %.3f, "
+          "ground-truth cusps %d in all",
+          qPrintable(name), int(dense.surface().domain().faceCount()), dense.options().samples,
+          sameLoops, n, 100.0 * sameLoops / n, sameFaces, n, 100.0 * sameFaces / n, jaccard / n,
+          truthCusps);
+}
+
+void TestGroundTruth::timingOnSpot() {
+    const auto cage = spotCage();
+    const DenseGroundTruth dense(catmullClark(cage), {64, 4});
+    double total = 0.0, worst = 0.0;
+    int loops = 0, cusps = 0;
+    const std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+    for (const Camera& camera : views) {
+        const GroundTruth truth = dense.compute(camera);
+        total += truth.seconds;
+        worst = std::max(worst, truth.seconds);
+        loops += int(truth.loops.size());
+        cusps += int(truth.cusps.size());
+    }
+    qInfo("spot, N = 64: %d domain faces, %zu samples evaluated once in %.2f s; per view "
+          "(26 views) %.3f s mean, %.3f s worst; %d loops and %d cusps in all",
+          int(dense.surface().domain().faceCount()), dense.sampleCount(), dense.samplingSeconds(),
+          total / views.size(), worst, loops, cusps);
+}
+
+QTEST_APPLESS_MAIN(TestGroundTruth)
+#include "test_ground_truth.moc"
