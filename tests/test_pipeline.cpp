@@ -73,8 +73,8 @@ private slots:
             QVERIFY(
                 validateParameters(m->parameters, ParameterSet::defaults(m->parameters)).empty());
         }
-        QVERIFY(!findMethod("consistent"));
-        QVERIFY(findPlannedMethod("consistent"));
+        QVERIFY(findMethod("consistent"));
+        QVERIFY(!findPlannedMethod("consistent"));
         QVERIFY(findPlannedMethod("powell-sabin"));
     }
 

@@ -3,8 +3,8 @@
 namespace contour {
 
 const std::vector<Method>& contourMethods() {
-    static const std::vector<Method> methods{makeMeshContourMethod(),
-                                             makeInterpolatedContourMethod()};
+    static const std::vector<Method> methods{
+        makeMeshContourMethod(), makeInterpolatedContourMethod(), makeConsistentContourMethod()};
     return methods;
 }
 
@@ -17,9 +17,6 @@ const Method* findMethod(const std::string& name) {
 
 const std::vector<PlannedMethod>& plannedMethods() {
     static const std::vector<PlannedMethod> planned{
-        {"consistent", "Consistent contours (Bénard et al. 2014)",
-         "not implemented yet: consistent contours need the smooth-surface layer (issue 3) and "
-         "the Bénard 2014 pipeline (issue 4)"},
         {"powell-sabin", "Powell-Sabin contours (Capouellez et al. 2023)",
          "not implemented yet: Powell-Sabin contours are planned after the consistent method"},
     };

@@ -8,7 +8,8 @@
 
 namespace contour {
 
-// Methods that run today: "mesh" and "interpolated".
+// Methods that run today: "mesh", "interpolated" and "consistent" (partial:
+// initialization and contour insertion of Bénard 2014, see its description).
 const std::vector<Method>& contourMethods();
 const Method* findMethod(const std::string& name);
 
@@ -24,5 +25,6 @@ const PlannedMethod* findPlannedMethod(const std::string& name);
 
 Method makeMeshContourMethod();
 Method makeInterpolatedContourMethod();
+Method makeConsistentContourMethod();
 
 } // namespace contour

@@ -34,4 +34,18 @@ inline constexpr const char* kRadialCurvature = "radial_curvature";
 inline constexpr const char* kGaussianCurvature = "gaussian_curvature";
 inline constexpr const char* kMeanCurvature = "mean_curvature";
 
+// Consistent contours (Bénard 2014, contours/consistent/). Face, int: the
+// Vertex-Based Orientation (Definition 1): +1 F, -1 B, 0 undefined.
+inline constexpr const char* kVbo = "vbo";
+// Face, int: 1 if the face is contour-consistent (Definition 2), else 0.
+inline constexpr const char* kConsistent = "consistent";
+// Face, int: index of the phase that created or last changed the face.
+inline constexpr const char* kChangedByPhase = "changed_by_phase";
+// Vertex, int: index of the phase that created or last changed the vertex.
+inline constexpr const char* kVertexChangedByPhase = "vertex_changed_by_phase";
+// Vertex, int: R_S label, +1 F, -1 B, 0 C (a contour vertex).
+inline constexpr const char* kLabel = "label";
+// Vertex, int: 0 initial, 1 inserted, 2 shifted.
+inline constexpr const char* kProvenance = "provenance";
+
 } // namespace contour::fields

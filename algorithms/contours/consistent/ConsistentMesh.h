@@ -1,0 +1,131 @@
+#pragma once
+// The per-view, editable triangle mesh of Bénard, Hertzmann & Kass 2014 §6
+// (notes §1.3, §2): every vertex i stores a preimage u_i on the smooth
+// surface's domain, its position f(u_i), its limit normal n(u_i), g(u_i) =
+// (c - f) · n (eq. 1), the radial curvature and a label F / B / C. Local
+// operators only (§6: edge split, vertex shift); provenance per vertex
+// (initial / inserted / shifted, and the phase that last changed it) and per
+// face (the phase that created or last changed it).
+//
+// Preimage interpolation follows appendix B (notes §2.6): a point on a domain
+// edge or corner has one preimage per domain face around it; two preimages
+// are interpolated in a face that holds both, or, when they lie in
+// edge-adjacent faces, in one face's chart extended across the shared edge
+// (SmoothSurface::transferAcrossEdge), the result mapped back into a face that
+// contains it. When no such chart exists the interpolation fails (nullopt) and
+// the caller cancels the operation and counts it; nothing is guessed.
+#include "camera/Camera.h"
+#include "mesh/TriangleMesh.h"
+#include "surface/SmoothSurface.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace contour::consistent {
+
+// R_S at a vertex (notes §1.3): sign of g, or C for an inserted root.
+enum class VertexLabel : std::int8_t { Back = -1, Contour = 0, Front = 1 };
+enum class Provenance : std::int8_t { Initial = 0, Inserted = 1, Shifted = 2 };
+
+VertexLabel labelFromG(double g);
+
+struct MeshVertex {
+    Preimage preimage;
+    Vec3 position = Vec3::Zero(); // f(u)
+    Vec3 normal = Vec3::Zero();   // n(u), unit
+    double g = 0.0;               // (c - f(u)) · n(u)
+    double radialCurvature = 0.0; // SurfaceFields.h convention, NaN where undefined
+    VertexLabel label = VertexLabel::Contour;
+    Provenance provenance = Provenance::Initial;
+    int phase = 0; // the phase index that created or last changed the vertex
+};
+
+class ConsistentMesh {
+public:
+    // chartTolerance: how far (in domain parameters) a preimage may be from a
+    // domain edge and still count as lying on it (so that it also has a
+    // preimage in the neighbouring face), and how far outside a face an
+    // interpolated preimage may land and still count as inside.
+    ConsistentMesh(std::shared_ptr<const SmoothSurface> surface, const Camera& camera,
+                   double chartTolerance);
+
+    const SmoothSurface& surface() const { return *surface_; }
+    const std::shared_ptr<const SmoothSurface>& surfacePtr() const { return surface_; }
+    const Camera& camera() const { return camera_; }
+
+    Index vertexCount() const { return static_cast<Index>(vertices_.size()); }
+    Index faceCount() const { return static_cast<Index>(faces_.size()); }
+    const MeshVertex& vertex(Index v) const { return vertices_[v]; }
+    const Triangle& face(Index f) const { return faces_[f]; }
+    int facePhase(Index f) const { return facePhase_[f]; }
+    const std::vector<Index>& vertexFaces(Index v) const { return vertexFaces_[v]; }
+
+    // Evaluates f, n, g and the radial curvature at p; the label is sign(g).
+    MeshVertex evaluate(const Preimage& p) const;
+
+    // Building (initialization and reloading a snapshot).
+    Index addVertex(const MeshVertex& v);
+    Index addFace(const Triangle& t, int phase);
+
+    // The face holding the directed edge a -> b, or kInvalidIndex.
+    Index faceOfHalfedge(Index a, Index b) const;
+    // Every edge once, as (a, b) with a -> b a half-edge of some face (for an
+    // interior edge the one with a < b).
+    std::vector<std::array<Index, 2>> edges() const;
+
+    // Appendix B: u(t) = (1 - t) u_a + t u_b in a common chart.
+    std::optional<Preimage> interpolate(const Preimage& a, const Preimage& b, double t) const;
+    // The three preimages' coordinates in every common chart: the domain
+    // faces holding all three, or else the faces whose chart extended across
+    // their edges holds all three; empty when there is none.
+    std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const;
+    // Sign of the face's orientation in parameter space (+1 counter-clockwise,
+    // the domain's orientation; -1 a fold; 0 degenerate), the worst over all
+    // common charts, or nullopt when the corners have no common chart.
+    std::optional<int> parameterOrientation(const std::array<Preimage, 3>& p) const;
+    std::optional<int> parameterOrientation(Index f) const;
+
+    // Edge split (§6, Fig. 16a and 16c): a vertex `v` (already evaluated) is
+    // inserted on edge a-b, and both faces on it are split in two. Returns the
+    // new vertex.
+    Index splitEdge(Index a, Index b, MeshVertex v, int phase);
+    // Vertex shift (§6): new preimage, f and n recomputed; the faces around
+    // it are marked as changed by `phase`.
+    void shiftVertex(Index v, const Preimage& p, VertexLabel label, int phase);
+    void setLabel(Index v, VertexLabel label) { vertices_[v].label = label; }
+
+    // The immutable mesh a snapshot publishes (positions f(u_i)).
+    std::shared_ptr<const TriangleMesh> toTriangleMesh() const;
+
+private:
+    std::shared_ptr<const SmoothSurface> surface_;
+    Camera camera_;
+    double tolerance_;
+    std::vector<MeshVertex> vertices_;
+    std::vector<Triangle> faces_;
+    std::vector<int> facePhase_;
+    std::vector<std::vector<Index>> vertexFaces_;
+    std::unordered_map<std::uint64_t, Index> halfedgeFace_;
+
+    static std::uint64_t key(Index a, Index b) {
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+               static_cast<std::uint32_t>(b);
+    }
+    void attachFace(Index f);
+    void detachFace(Index f);
+    int cornerCount(Index domainFace) const { return surface_->isQuad(domainFace) ? 4 : 3; }
+    bool onDomainEdge(const Preimage& p, int edge) const;
+    bool insideWithTolerance(const Preimage& p) const;
+    Preimage clampIntoFace(Preimage p) const;
+    // Every preimage of the same surface point (one per domain face around a
+    // domain edge or corner the point lies on), p first.
+    std::vector<Preimage> equivalents(const Preimage& p) const;
+    // p expressed in the chart of `face` (p's face, or an edge neighbour).
+    std::optional<Vec2> inChart(const std::vector<Preimage>& reps, Index face) const;
+};
+
+} // namespace contour::consistent

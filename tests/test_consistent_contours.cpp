@@ -1,0 +1,212 @@
+// Consistent contours (Bénard, Hertzmann & Kass 2014), the phases implemented
+// so far: the VBO table (Definitions 1-3), appendix B interpolation, and the
+// post-conditions of contour insertion (notes §6.1 item 3) over the 26-view
+// protocol on a Catmull-Clark sphere and torus; the sphere's contour
+// generator is one closed loop. Reports the inconsistent-face counts per
+// phase (radialization is not implemented, so they are not zero).
+#include "ContourTestSupport.h"
+#include "contours/consistent/ConsistentMesh.h"
+#include "contours/consistent/VertexBasedOrientation.h"
+#include "mesh/MeshReader.h"
+#include "pipeline/FieldNames.h"
+#include "surface/SmoothSurfaceFactory.h"
+
+#include <QtTest>
+#include <filesystem>
+
+using namespace contour;
+using namespace contour::consistent;
+using namespace contour::testing;
+
+namespace {
+
+constexpr int kInitialization = 1, kContourInsertion = 2, kChaining = 3; // snapshot indices
+
+struct ViewRun {
+    std::vector<Snapshot> snapshots;
+};
+
+ViewRun runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera) {
+    const Method& m = *findMethod("consistent");
+    ParameterSet p = ParameterSet::defaults(m.parameters);
+    p.set("surface", std::string("catmull-clark"));
+    Runner runner(m, makeInputSnapshot(cage), camera, p);
+    runner.runToEnd();
+    ViewRun r;
+    for (int i = 0; i <= runner.completedPhases(); ++i)
+        r.snapshots.push_back(runner.snapshot(i));
+    return r;
+}
+
+void verifyNoViolations(const Snapshot& s) {
+    for (const InvariantCheck& c : s.invariants)
+        QVERIFY2(c.violations == 0,
+                 qPrintable(QString::fromStdString(s.phaseName + ": " + c.name + " violated " +
+                                                   std::to_string(c.violations) + "x, first " +
+                                                   c.firstExample)));
+}
+
+// Per phase: total inconsistent faces, worst view, total faces.
+struct Tally {
+    double inconsistent[2] = {0, 0}, worst[2] = {0, 0}, faces[2] = {0, 0};
+};
+
+void report(const char* name, const Tally& t, int views) {
+    const char* phases[2] = {"initialization", "contour-insertion"};
+    for (int k = 0; k < 2; ++k)
+        qInfo("%s, %d views, after %s: %.0f inconsistent of %.0f faces in total (%.3f %%), "
+              "mean %.1f per view, worst view %.0f",
+              name, views, phases[k], t.inconsistent[k], t.faces[k],
+              100.0 * t.inconsistent[k] / t.faces[k], t.inconsistent[k] / views, t.worst[k]);
+}
+
+void tally(Tally& t, const ViewRun& r) {
+    for (int k = 0; k < 2; ++k) {
+        const Snapshot& s = r.snapshots[kInitialization + k];
+        const double n = s.counter("inconsistent faces");
+        t.inconsistent[k] += n;
+        t.worst[k] = std::max(t.worst[k], n);
+        t.faces[k] += s.counter("faces");
+    }
+}
+
+} // namespace
+
+class TestConsistentContours : public QObject {
+    Q_OBJECT
+private slots:
+    // Definition 1 for every label multiset (27 ordered triples).
+    void vboTable() {
+        const VertexLabel all[3] = {VertexLabel::Back, VertexLabel::Contour, VertexLabel::Front};
+        for (VertexLabel a : all)
+            for (VertexLabel b : all)
+                for (VertexLabel c : all) {
+                    int f = 0, bk = 0, cc = 0;
+                    for (VertexLabel l : {a, b, c}) {
+                        f += l == VertexLabel::Front;
+                        bk += l == VertexLabel::Back;
+                        cc += l == VertexLabel::Contour;
+                    }
+                    Vbo expected = Vbo::Undefined; // CCC, CFB, FBB, FFB
+                    if (bk == 0 && f > 0)          // FFF, CFF, CCF
+                        expected = Vbo::Front;
+                    if (f == 0 && bk > 0) // BBB, CBB, CCB
+                        expected = Vbo::Back;
+                    QCOMPARE(vertexBasedOrientation(a, b, c), expected);
+                }
+        using L = VertexLabel;
+        QCOMPARE(vertexBasedOrientation(L::Contour, L::Contour, L::Contour), Vbo::Undefined);
+        QCOMPARE(vertexBasedOrientation(L::Contour, L::Front, L::Back), Vbo::Undefined);
+        QCOMPARE(vertexBasedOrientation(L::Front, L::Back, L::Back), Vbo::Undefined);
+        QCOMPARE(vertexBasedOrientation(L::Front, L::Front, L::Back), Vbo::Undefined);
+        QCOMPARE(vertexBasedOrientation(L::Contour, L::Contour, L::Front), Vbo::Front);
+        QCOMPARE(vertexBasedOrientation(L::Back, L::Contour, L::Back), Vbo::Back);
+    }
+
+    // Definitions 2 and 3.
+    void consistencyAndDegenerateEdges() {
+        QVERIFY(isConsistent(Vbo::Front, Facing::Front));
+        QVERIFY(isConsistent(Vbo::Back, Facing::Back));
+        QVERIFY(!isConsistent(Vbo::Front, Facing::Back));
+        QVERIFY(!isConsistent(Vbo::Back, Facing::Front));
+        QVERIFY(!isConsistent(Vbo::Undefined, Facing::Front));
+        QVERIFY(!isConsistent(Vbo::Front, Facing::EdgeOn));
+        using L = VertexLabel;
+        QVERIFY(isDegenerateEdge(L::Contour, L::Contour, Vbo::Front, Vbo::Front));
+        QVERIFY(isDegenerateEdge(L::Contour, L::Contour, Vbo::Back, Vbo::Back));
+        QVERIFY(!isDegenerateEdge(L::Contour, L::Contour, Vbo::Front, Vbo::Back));
+        QVERIFY(!isDegenerateEdge(L::Contour, L::Front, Vbo::Front, Vbo::Front));
+        QVERIFY(!isDegenerateEdge(L::Contour, L::Contour, Vbo::Undefined, Vbo::Undefined));
+    }
+
+    // Appendix B: interpolation inside a face, across a domain edge, and
+    // cancelled when the faces share no chart.
+    void preimageInterpolation() {
+        const auto cage = shape("sphere", 8);
+        const auto surface = makeSmoothSurface(*cage, SurfaceKind::CatmullClark);
+        const Camera camera = Camera::views26(cage->boundingBox(), Viewport{800, 600})[0];
+        const ConsistentMesh m(surface, camera, 1e-9);
+        const auto same = m.interpolate({0, 0.2, 0.2}, {0, 0.6, 0.8}, 0.5);
+        QVERIFY(same && same->face == 0);
+        QVERIFY(std::abs(same->u - 0.4) < 1e-15 && std::abs(same->v - 0.5) < 1e-15);
+        // Across edge 0 of face 0: a point inside the neighbour.
+        const SmoothSurface::EdgeNeighbor nb = surface->neighbor(0, 0);
+        QVERIFY(nb.face != kInvalidIndex);
+        const Preimage outside = surface->transferAcrossEdge({0, 0.5, -0.3}, 0);
+        QCOMPARE(outside.face, nb.face);
+        QVERIFY(surface->contains(outside));
+        const auto across = m.interpolate({0, 0.5, 0.3}, outside, 0.5);
+        QVERIFY(across);
+        // The midpoint is on the shared edge: the same surface point as (0.5, 0) in face 0.
+        const Vec3 expected = surface->evaluate({0, 0.5, 0.0}).position;
+        QVERIFY((surface->evaluate(*across).position - expected).norm() < 1e-9);
+        // Two faces far apart share no chart: cancelled, never guessed.
+        Index far = kInvalidIndex;
+        const Vec3 p0 = surface->evaluate({0, 0.5, 0.5}).position;
+        for (Index f = 0; f < surface->domain().faceCount(); ++f)
+            if ((surface->evaluate({f, 0.5, 0.5}).position - p0).norm() > 1.5)
+                far = f;
+        QVERIFY(far != kInvalidIndex);
+        QVERIFY(!m.interpolate({0, 0.5, 0.5}, {far, 0.5, 0.5}, 0.5));
+    }
+
+    void postconditionsOverTheProtocol_data() {
+        QTest::addColumn<QString>("shapeName");
+        for (const char* name : {"sphere", "torus"})
+            QTest::addRow("%s", name) << QString(name);
+    }
+    void postconditionsOverTheProtocol() {
+        QFETCH(QString, shapeName);
+        const auto cage = shape(shapeName.toStdString(), shapeName == "sphere" ? 8 : 12);
+        const std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+        Tally t;
+        for (size_t v = 0; v < views.size(); ++v) {
+            const ViewRun r = runViews(cage, views[v]);
+            QCOMPARE(static_cast<int>(r.snapshots.size()), 4);
+            for (const Snapshot& s : r.snapshots)
+                verifyNoViolations(s);
+            const Snapshot& ins = r.snapshots[kContourInsertion];
+            QCOMPARE(ins.counter("FB edges left"), 0.0);
+            QCOMPARE(ins.counter("undefined VBOs"), 0.0);
+            QCOMPARE(ins.counter("degenerate CC edges"), 0.0);
+            QVERIFY(ins.counter("contour vertices") > 0);
+            // |g| at C vertices, recomputed here from the published fields.
+            const auto& label = *ins.field(fields::kLabel)->labels();
+            const auto& g = *ins.field(fields::kG)->scalars();
+            const double tol = 1e-10 * ins.mesh->boundingBox().diagonal();
+            for (size_t i = 0; i < label.size(); ++i)
+                if (label[i] == 0)
+                    QVERIFY2(std::abs(g[i]) <= tol, qPrintable(QString("g = %1").arg(g[i])));
+            int open = 0;
+            const int loops = contourLoops(r.snapshots[kChaining], &open);
+            QCOMPARE(open, 0);
+            if (shapeName == "sphere")
+                QCOMPARE(loops, 1);
+            else
+                QVERIFY(loops >= 1);
+            tally(t, r);
+        }
+        report(qPrintable(shapeName), t, static_cast<int>(views.size()));
+    }
+
+    void spotInconsistentFaces() {
+        const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
+        if (!std::filesystem::exists(path))
+            QSKIP("samples/spot_control_mesh.obj is absent");
+        const auto cage = std::make_shared<const PolygonMesh>(readMesh(path));
+        const std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+        Tally t;
+        for (const Camera& camera : views) {
+            const ViewRun r = runViews(cage, camera);
+            for (const Snapshot& s : r.snapshots)
+                verifyNoViolations(s);
+            QCOMPARE(r.snapshots[kContourInsertion].counter("FB edges left"), 0.0);
+            QCOMPARE(r.snapshots[kContourInsertion].counter("undefined VBOs"), 0.0);
+            tally(t, r);
+        }
+        report("spot_control_mesh", t, static_cast<int>(views.size()));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestConsistentContours)
+#include "test_consistent_contours.moc"
