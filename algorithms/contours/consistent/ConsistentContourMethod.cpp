@@ -6,8 +6,7 @@
 // (edges between an F-VBO and a B-VBO face). Cusp detection (§6.2 d),
 // radialization (§6.3) and optimization (§6.4) are not implemented yet.
 #include "camera/Facing.h"
-#include "contours/BoundaryCurves.h"
-#include "contours/ContourChaining.h"
+#include "contours/EdgePolylines.h"
 #include "contours/Methods.h"
 #include "contours/SurfacePhase.h"
 #include "contours/consistent/ConsistentMesh.h"
@@ -482,7 +481,7 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
     const TriangleMesh& mesh = *s.mesh;
     const std::vector<int>& vbo = *s.field(fields::kVbo)->labels();
     const std::vector<int>& facing = *s.field(fields::kFacing)->labels();
-    std::vector<ChainSegment> segments;
+    std::vector<Index> generator;
     long long meshContourEdges = 0;
     std::vector<int> label(mesh.edgeCount(), 0);
     for (Index e = 0; e < mesh.edgeCount(); ++e) {
@@ -492,39 +491,16 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
         const Index f0 = TriangleMesh::face(h), f1 = TriangleMesh::face(mesh.opposite(h));
         meshContourEdges += (facing[f0] > 0) != (facing[f1] > 0);
         if (vbo[f0] * vbo[f1] < 0) {
-            segments.push_back({mesh.from(h), mesh.to(h), e});
+            generator.push_back(e);
             label[e] = 1;
         }
-    }
-    const std::vector<Chain> chains = chainSegments(segments, mesh.vertexCount());
-    auto lines = std::make_shared<std::vector<Polyline>>();
-    long long loops = 0;
-    for (const Chain& chain : chains) {
-        Polyline line;
-        line.type = CurveType::Contour;
-        line.closed = chain.closed;
-        line.source = SegmentSource::MeshEdge;
-        for (Index v : chain.nodes)
-            line.points.push_back({mesh.position(v), v, kInvalidIndex, 0.0});
-        for (Index seg : chain.segments)
-            line.segmentElement.push_back(segments[seg].element);
-        loops += chain.closed;
-        lines->push_back(std::move(line));
     }
     s.setField(fields::kContourEdge,
                {FieldLocation::Edge, std::move(label),
                 "1 on the contour generator (an F-VBO face next to a B-VBO face)"});
-    s.setCounter("contour generator edges", static_cast<double>(segments.size()));
+    s.setCounter("contour generator edges", static_cast<double>(generator.size()));
     s.setCounter("mesh contour edges", static_cast<double>(meshContourEdges));
-    s.setCounter("contour chains", static_cast<double>(chains.size()));
-    s.setCounter("closed loops", static_cast<double>(loops));
-    s.setCounter("open chains", static_cast<double>(chains.size() - loops));
-    if (ctx.parameters.getBool("include-boundaries")) {
-        auto boundary = boundaryPolylines(mesh);
-        s.setCounter("boundary curves", static_cast<double>(boundary.size()));
-        lines->insert(lines->end(), boundary.begin(), boundary.end());
-    }
-    s.curves = std::move(lines);
+    publishCurves(ctx, s, edgePolylines(mesh, generator, CurveType::Contour));
     s.notes.push_back(kStatusNote);
     s.setCounter("time",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
