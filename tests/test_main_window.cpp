@@ -402,11 +402,10 @@ void TestMainWindow::smoothSurfaceReplacesWorkingMesh() {
     // the cage's limit surface); the 3D view follows the snapshot's mesh.
     auto* surface =
         qobject_cast<QComboBox*>(window_->methodPanel()->editor(QStringLiteral("surface")));
-    if (!surface || surface->findText(QStringLiteral("catmull-clark")) < 0)
-        QSKIP("the mesh method has no smooth-surface parameter");
+    QVERIFY2(surface && surface->findText(QStringLiteral("catmull-clark")) >= 0,
+             "the mesh method has no smooth-surface parameter");
     const QString spot = sample(QStringLiteral("spot_control_mesh"));
-    if (spot.isEmpty())
-        QSKIP("samples/spot_control_mesh.obj is missing");
+    QVERIFY2(!spot.isEmpty(), "samples/spot_control_mesh.obj is missing");
     QVERIFY(window_->openMesh(spot));
     QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
     const long long cageTriangles = window_->currentSnapshot().mesh->faceCount();
