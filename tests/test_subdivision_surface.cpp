@@ -11,6 +11,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QFileInfo>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <algorithm>
@@ -191,7 +192,12 @@ PolygonMesh grid(int n, unsigned seed) {
     return m;
 }
 
+// spot and bob are bundled in samples/ (public domain), so these checks run
+// in every clone; other meshes come from ../shared/meshes when it is there.
 QString sharedMesh(const char* name) {
+    const QString bundled = QStringLiteral(CONTOUR_SOURCE_DIR "/samples/") + QLatin1String(name);
+    if (QFileInfo::exists(bundled))
+        return bundled;
     return QStringLiteral(CONTOUR_SHARED_DIR "/meshes/") + QLatin1String(name);
 }
 
