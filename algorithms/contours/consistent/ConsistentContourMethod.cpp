@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -272,7 +271,6 @@ std::vector<InvariantCheck> checkContourInsertion(const PhaseContext& ctx, const
 // two triangles, vertices at their limit positions and labelled by sign(g);
 // then the sign-crossing search on FF and BB edges.
 void runInitialization(const PhaseContext& ctx, Snapshot& s) {
-    const auto start = std::chrono::steady_clock::now();
     const std::shared_ptr<const SmoothSurface> surface = surfaceFor(ctx, s);
     ConsistentMesh m(surface, ctx.camera, ctx.parameters.getDouble("chart-tolerance"));
     const int phase = s.phaseIndex;
@@ -326,8 +324,6 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
         s.notes.push_back(std::to_string(cancelled) +
                           " edges were not searched for sign crossings: their endpoints' "
                           "preimages have no common chart (appendix B)");
-    s.setCounter("time",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 // ------------------------------------------------------ contour insertion
@@ -387,7 +383,6 @@ bool shiftable(const ConsistentMesh& m, Index v, const Preimage& p) {
 // remains. Cusp edges are not treated separately: cusp detection (§6.2 d)
 // is not implemented.
 void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
-    const auto start = std::chrono::steady_clock::now();
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     const double tol = ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
@@ -468,8 +463,6 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
         s.notes.push_back(std::to_string(cancelled) +
                           " FB edges kept: their endpoints' preimages have no common chart, "
                           "so the insertion was cancelled (appendix B)");
-    s.setCounter("time",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 // --------------------------------------------------------------- chaining
@@ -477,7 +470,6 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
 // The mesh's contour generator on a consistent mesh: the edges between an
 // F-VBO face and a B-VBO face (§4), chained through vertices of degree 2.
 void runChaining(const PhaseContext& ctx, Snapshot& s) {
-    const auto start = std::chrono::steady_clock::now();
     const TriangleMesh& mesh = *s.mesh;
     const std::vector<int>& vbo = *s.field(fields::kVbo)->labels();
     const std::vector<int>& facing = *s.field(fields::kFacing)->labels();
@@ -502,8 +494,6 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("mesh contour edges", static_cast<double>(meshContourEdges));
     publishCurves(ctx, s, edgePolylines(mesh, generator, CurveType::Contour));
     s.notes.push_back(kStatusNote);
-    s.setCounter("time",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 // Notes §6.1 item 10: contour-generator vertices have degree 2 except on
