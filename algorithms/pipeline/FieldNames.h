@@ -45,7 +45,23 @@ inline constexpr const char* kChangedByPhase = "changed_by_phase";
 inline constexpr const char* kVertexChangedByPhase = "vertex_changed_by_phase";
 // Vertex, int: R_S label, +1 F, -1 B, 0 C (a contour vertex).
 inline constexpr const char* kLabel = "label";
-// Vertex, int: 0 initial, 1 inserted, 2 shifted.
+// Vertex, int: 0 initial, 1 inserted, 2 shifted, 3 wiggled.
 inline constexpr const char* kProvenance = "provenance";
+// Vertex, int: 1 at a cusp vertex (g = 0 and radial curvature 0, §6.2 d).
+inline constexpr const char* kCusp = "cusp";
+// Vertex, double: offset along n(u) of the final normal wiggle (§6.4);
+// position = f(u) + offset * n(u).
+inline constexpr const char* kNormalOffset = "normal_offset";
+// Face, int: 1 radial triangle (Definition 5), else 0.
+inline constexpr const char* kRadial = "radial";
+// Face, int: 1 standard radial triangle (§6.3), else 0.
+inline constexpr const char* kStandardRadial = "standard_radial";
+// Edge, int: 1 on a radial edge p-r (Definition 5).
+inline constexpr const char* kRadialEdge = "radial_edge";
+// Edge, int: 1 on an FB edge holding a cusp preimage, to be inserted last.
+inline constexpr const char* kCuspEdge = "cusp_edge";
+// Face, int: 1 where the face is folded in parameter space (its preimages
+// wind against the domain's orientation).
+inline constexpr const char* kFolded = "folded";
 
 } // namespace contour::fields

@@ -255,6 +255,7 @@ std::optional<int> ConsistentMesh::parameterOrientation(Index f) const {
 
 Index ConsistentMesh::splitEdge(Index a, Index b, MeshVertex v, int phase) {
     v.phase = phase;
+    edgeTags_.erase(undirectedKey(a, b));
     const Index m = addVertex(v);
     for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}}) {
         const Index f = faceOfHalfedge(x, y);
@@ -271,6 +272,152 @@ Index ConsistentMesh::splitEdge(Index a, Index b, MeshVertex v, int phase) {
         addFace({m, y, c}, phase);
     }
     return m;
+}
+
+void ConsistentMesh::setVertex(Index v, const MeshVertex& x, int phase) {
+    vertices_[v] = x;
+    if (phase >= 0) {
+        vertices_[v].phase = phase;
+        for (Index f : vertexFaces_[v])
+            facePhase_[f] = phase;
+    }
+}
+
+std::array<Index, 2> ConsistentMesh::oppositeVertices(Index a, Index b) const {
+    std::array<Index, 2> out{kInvalidIndex, kInvalidIndex};
+    for (int side = 0; side < 2; ++side) {
+        const Index f = side == 0 ? faceOfHalfedge(a, b) : faceOfHalfedge(b, a);
+        if (f == kInvalidIndex)
+            continue;
+        for (Index w : faces_[f])
+            if (w != a && w != b)
+                out[side] = w;
+    }
+    return out;
+}
+
+bool ConsistentMesh::flipEdge(Index a, Index b, int phase) {
+    const Index f0 = faceOfHalfedge(a, b), f1 = faceOfHalfedge(b, a);
+    if (f0 == kInvalidIndex || f1 == kInvalidIndex)
+        return false;
+    const auto [c, d] = oppositeVertices(a, b);
+    if (c == d || faceOfHalfedge(c, d) != kInvalidIndex || faceOfHalfedge(d, c) != kInvalidIndex)
+        return false;
+    detachFace(f0);
+    detachFace(f1);
+    faces_[f0] = {a, d, c};
+    faces_[f1] = {b, c, d};
+    facePhase_[f0] = phase;
+    facePhase_[f1] = phase;
+    attachFace(f0);
+    attachFace(f1);
+    edgeTags_.erase(undirectedKey(a, b));
+    return true;
+}
+
+std::vector<Index> ConsistentMesh::neighbours(Index v) const {
+    std::vector<Index> out;
+    for (Index f : vertexFaces_[v])
+        for (Index w : faces_[f])
+            if (w != v && std::find(out.begin(), out.end(), w) == out.end())
+                out.push_back(w);
+    return out;
+}
+
+bool ConsistentMesh::isBoundaryVertex(Index v) const {
+    for (Index f : vertexFaces_[v]) {
+        const Triangle& t = faces_[f];
+        for (int i = 0; i < 3; ++i)
+            if (t[i] == v && (faceOfHalfedge(t[(i + 1) % 3], v) == kInvalidIndex ||
+                              faceOfHalfedge(v, t[(i + 2) % 3]) == kInvalidIndex))
+                return true;
+    }
+    return false;
+}
+
+bool ConsistentMesh::removeValence3Vertex(Index v, int phase) {
+    const std::vector<Index> around = vertexFaces_[v];
+    if (around.size() != 3 || isBoundaryVertex(v))
+        return false;
+    // The fan v-a-b, v-b-x, v-x-a (counter-clockwise) becomes a-b-x, which
+    // keeps the fan's orientation.
+    Triangle first = faces_[around[0]];
+    while (first[0] != v)
+        std::rotate(first.begin(), first.begin() + 1, first.end());
+    const Index a = first[1], b = first[2];
+    Index third = kInvalidIndex;
+    for (Index w : neighbours(v))
+        if (w != a && w != b)
+            third = w;
+    if (third == kInvalidIndex)
+        return false;
+    for (Index f : around)
+        detachFace(f);
+    // Keep the face slots compact: reuse around[0], move the last faces into
+    // the other two slots.
+    std::vector<Index> slots(around.begin(), around.end());
+    std::sort(slots.begin(), slots.end());
+    faces_[slots[0]] = {a, b, third};
+    facePhase_[slots[0]] = phase;
+    attachFace(slots[0]);
+    for (int k = 2; k >= 1; --k) {
+        const Index slot = slots[k];
+        const Index last = faceCount() - 1;
+        if (slot != last) {
+            detachFace(last);
+            faces_[slot] = faces_[last];
+            facePhase_[slot] = facePhase_[last];
+            attachFace(slot);
+        }
+        faces_.pop_back();
+        facePhase_.pop_back();
+    }
+    for (auto it = edgeTags_.begin(); it != edgeTags_.end();) {
+        const auto [x, y] = edgeFromKey(it->first);
+        it = x == v || y == v ? edgeTags_.erase(it) : std::next(it);
+    }
+    return true;
+}
+
+void ConsistentMesh::compact() {
+    std::vector<Index> newIndex(vertices_.size(), kInvalidIndex);
+    Index n = 0;
+    for (Index v = 0; v < vertexCount(); ++v)
+        if (!vertexFaces_[v].empty())
+            newIndex[v] = n++;
+    if (n == vertexCount())
+        return;
+    std::vector<MeshVertex> vertices(n);
+    for (Index v = 0; v < vertexCount(); ++v)
+        if (newIndex[v] != kInvalidIndex)
+            vertices[newIndex[v]] = vertices_[v];
+    std::unordered_map<std::uint64_t, int> tags;
+    for (const auto& [k, tag] : edgeTags_) {
+        const auto [x, y] = edgeFromKey(k);
+        if (newIndex[x] != kInvalidIndex && newIndex[y] != kInvalidIndex)
+            tags[undirectedKey(newIndex[x], newIndex[y])] = tag;
+    }
+    vertices_ = std::move(vertices);
+    edgeTags_ = std::move(tags);
+    vertexFaces_.assign(n, {});
+    halfedgeFace_.clear();
+    for (Triangle& t : faces_)
+        for (Index& w : t)
+            w = newIndex[w];
+    for (Index f = 0; f < faceCount(); ++f)
+        attachFace(f);
+}
+
+int ConsistentMesh::edgeTag(Index a, Index b) const {
+    const auto it = edgeTags_.find(undirectedKey(a, b));
+    return it == edgeTags_.end() ? kNoTag : it->second;
+}
+
+void ConsistentMesh::setEdgeTag(Index a, Index b, int tag) {
+    if (tag == kNoTag)
+        edgeTags_.erase(undirectedKey(a, b));
+    else
+        edgeTags_[undirectedKey(a, b)] = tag;
 }
 
 void ConsistentMesh::shiftVertex(Index v, const Preimage& p, VertexLabel label, int phase) {

@@ -29,7 +29,14 @@ namespace contour::consistent {
 
 // R_S at a vertex (notes §1.3): sign of g, or C for an inserted root.
 enum class VertexLabel : std::int8_t { Back = -1, Contour = 0, Front = 1 };
-enum class Provenance : std::int8_t { Initial = 0, Inserted = 1, Shifted = 2 };
+enum class Provenance : std::int8_t { Initial = 0, Inserted = 1, Shifted = 2, Wiggled = 3 };
+
+// Tags kept on an edge (an unordered vertex pair) between phases.
+enum EdgeTag : int {
+    kNoTag = 0,
+    kCuspEdge = 1,   // an FB edge whose root of g is a cusp (§6.2 d): insert it last
+    kRadialEdge = 2, // p-r with p a C vertex and r on p's radial plane (Definition 5)
+};
 
 VertexLabel labelFromG(double g);
 
@@ -39,6 +46,10 @@ struct MeshVertex {
     Vec3 normal = Vec3::Zero();   // n(u), unit
     double g = 0.0;               // (c - f(u)) · n(u)
     double radialCurvature = 0.0; // SurfaceFields.h convention, NaN where undefined
+    // Only the final normal wiggle (§6.4, notes §2.4.5) moves a vertex off the
+    // surface: position = f(u) + normalOffset * n(u).
+    double normalOffset = 0.0;
+    bool cusp = false; // a C vertex inserted at a cusp (g = 0 and κr = 0, §6.2 d)
     VertexLabel label = VertexLabel::Contour;
     Provenance provenance = Provenance::Initial;
     int phase = 0; // the phase index that created or last changed the vertex
@@ -97,6 +108,35 @@ public:
     // it are marked as changed by `phase`.
     void shiftVertex(Index v, const Preimage& p, VertexLabel label, int phase);
     void setLabel(Index v, VertexLabel label) { vertices_[v].label = label; }
+    // Replaces a vertex's whole record (trial moves that are undone, the
+    // normal wiggle); the faces around it are marked as changed by `phase`
+    // unless phase < 0 (an undo).
+    void setVertex(Index v, const MeshVertex& x, int phase);
+
+    // Edge flip (§6, Fig. 16e): faces a-b-c and b-a-d become a-d-c and
+    // b-c-d, i.e. edge a-b is replaced by c-d. Returns false (and changes
+    // nothing) for a boundary edge or when c-d already is an edge. Tags of
+    // a-b are dropped. Fold checks are the caller's (wouldFold-style tests
+    // differ per phase).
+    bool flipEdge(Index a, Index b, int phase);
+    // The vertices opposite edge a-b: {c, d} with a-b-c and b-a-d faces
+    // (kInvalidIndex on a boundary side).
+    std::array<Index, 2> oppositeVertices(Index a, Index b) const;
+    // Vertex deletion (Fig. 16e right): a vertex of valence 3 (interior)
+    // whose three faces become one; the vertex is left isolated and removed
+    // by compact(). Returns false when v is not an interior valence-3 vertex.
+    bool removeValence3Vertex(Index v, int phase);
+    // The vertices adjacent to v, in no particular order.
+    std::vector<Index> neighbours(Index v) const;
+    bool isBoundaryVertex(Index v) const;
+    // Drops isolated (deleted) vertices and renumbers; invalidates indices.
+    void compact();
+
+    // Edge tags (unordered vertex pairs).
+    int edgeTag(Index a, Index b) const;
+    void setEdgeTag(Index a, Index b, int tag);
+    void addEdgeTag(Index a, Index b, int tag) { setEdgeTag(a, b, edgeTag(a, b) | tag); }
+    const std::unordered_map<std::uint64_t, int>& edgeTags() const { return edgeTags_; }
 
     // The immutable mesh a snapshot publishes (positions f(u_i)).
     std::shared_ptr<const TriangleMesh> toTriangleMesh() const;
@@ -110,11 +150,20 @@ private:
     std::vector<int> facePhase_;
     std::vector<std::vector<Index>> vertexFaces_;
     std::unordered_map<std::uint64_t, Index> halfedgeFace_;
+    std::unordered_map<std::uint64_t, int> edgeTags_;
 
     static std::uint64_t key(Index a, Index b) {
         return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
                static_cast<std::uint32_t>(b);
     }
+    static std::uint64_t undirectedKey(Index a, Index b) { return a < b ? key(a, b) : key(b, a); }
+
+public:
+    static std::array<Index, 2> edgeFromKey(std::uint64_t k) {
+        return {static_cast<Index>(k >> 32), static_cast<Index>(k & 0xffffffffu)};
+    }
+
+private:
     void attachFace(Index f);
     void detachFace(Index f);
     int cornerCount(Index domainFace) const { return surface_->isQuad(domainFace) ? 4 : 3; }

@@ -1,0 +1,356 @@
+#include "contours/consistent/ConsistentPhaseSupport.h"
+
+#include "contours/SurfacePhase.h"
+#include "pipeline/FieldNames.h"
+#include "surface/SmoothSurfaceFactory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <unordered_set>
+
+namespace contour::consistent {
+
+std::shared_ptr<const SmoothSurface> surfaceFor(const PhaseContext& ctx, const Snapshot& s) {
+    if (!s.cage)
+        throw std::invalid_argument("consistent contours need the control cage, and the input "
+                                    "snapshot has none");
+    const std::optional<SurfaceKind> kind = selectedSurfaceKind(ctx.parameters, *s.cage);
+    if (!kind)
+        throw std::invalid_argument("consistent contours need a smooth surface");
+    return cachedSmoothSurface(s.cage, *kind).surface;
+}
+
+double sceneScale(const ConsistentMesh& m) {
+    BoundingBox box;
+    for (Index v = 0; v < m.vertexCount(); ++v)
+        box.extend(m.vertex(v).position);
+    const double d = box.diagonal();
+    return d > 0.0 ? d : 1.0;
+}
+
+// ------------------------------------------------------ snapshot round trip
+
+namespace {
+
+template <typename T> const std::vector<T>* optionalValues(const Snapshot& s, const char* name) {
+    const Field* f = s.field(name);
+    return f ? std::get_if<std::vector<T>>(&f->values) : nullptr;
+}
+
+} // namespace
+
+ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
+    ConsistentMesh m(surfaceFor(ctx, s), ctx.camera, ctx.parameters.getDouble("chart-tolerance"));
+    const auto* face = optionalValues<int>(s, fields::kPreimageFace);
+    const auto* uv = optionalValues<Vec3>(s, fields::kPreimageUv);
+    const auto* label = optionalValues<int>(s, fields::kLabel);
+    const auto* prov = optionalValues<int>(s, fields::kProvenance);
+    const auto* vphase = optionalValues<int>(s, fields::kVertexChangedByPhase);
+    const auto* fphase = optionalValues<int>(s, fields::kChangedByPhase);
+    if (!face || !uv || !label || !prov || !vphase || !fphase)
+        throw std::logic_error("consistent contours: the previous phase published no mesh");
+    const auto* cusp = optionalValues<int>(s, fields::kCusp);
+    const auto* offset = optionalValues<double>(s, fields::kNormalOffset);
+    const TriangleMesh& mesh = *s.mesh;
+    for (Index v = 0; v < mesh.vertexCount(); ++v) {
+        const Vec3& p = (*uv)[v];
+        MeshVertex mv = m.evaluate({(*face)[v], p.x(), p.y()});
+        mv.label = static_cast<VertexLabel>((*label)[v]);
+        mv.provenance = static_cast<Provenance>((*prov)[v]);
+        mv.phase = (*vphase)[v];
+        mv.cusp = cusp && (*cusp)[v] != 0;
+        if (offset && (*offset)[v] != 0.0) {
+            mv.normalOffset = (*offset)[v];
+            mv.position += mv.normalOffset * mv.normal;
+        }
+        m.addVertex(mv);
+    }
+    for (Index f = 0; f < mesh.faceCount(); ++f)
+        m.addFace(mesh.triangle(f), (*fphase)[f]);
+    for (const auto& [name, tag] :
+         {std::pair{fields::kCuspEdge, kCuspEdge}, std::pair{fields::kRadialEdge, kRadialEdge}}) {
+        const auto* values = optionalValues<int>(s, name);
+        if (!values)
+            continue;
+        for (Index e = 0; e < mesh.edgeCount(); ++e)
+            if ((*values)[e] != 0) {
+                const Index h = mesh.edgeHalfedge(e);
+                m.addEdgeTag(mesh.from(h), mesh.to(h), tag);
+            }
+    }
+    return m;
+}
+
+std::string describeFace(const ConsistentMesh& m, Index f) {
+    std::string out = "face " + std::to_string(f) + ":";
+    for (Index v : m.face(f)) {
+        const MeshVertex& x = m.vertex(v);
+        out += " v" + std::to_string(v) + " (domain face " + std::to_string(x.preimage.face) +
+               " u " + std::to_string(x.preimage.u) + " v " + std::to_string(x.preimage.v) +
+               ", label " + std::to_string(static_cast<int>(x.label)) + ", provenance " +
+               std::to_string(static_cast<int>(x.provenance)) + ", phase " +
+               std::to_string(x.phase) + ")";
+    }
+    return out;
+}
+
+// ------------------------------------------------------- classification
+
+Vbo faceVbo(const ConsistentMesh& m, Index f) {
+    const Triangle& t = m.face(f);
+    return vertexBasedOrientation(m.vertex(t[0]).label, m.vertex(t[1]).label, m.vertex(t[2]).label);
+}
+
+Facing faceFacing(const ConsistentMesh& m, Index f) {
+    const Triangle& t = m.face(f);
+    return triangleFacing(m.camera(), m.vertex(t[0]).position, m.vertex(t[1]).position,
+                          m.vertex(t[2]).position);
+}
+
+bool faceIsConsistent(const ConsistentMesh& m, Index f) {
+    return isConsistent(faceVbo(m, f), faceFacing(m, f));
+}
+
+int inconsistentFacesAround(const ConsistentMesh& m, const std::vector<Index>& vertices) {
+    std::vector<Index> faces;
+    for (Index v : vertices)
+        faces.insert(faces.end(), m.vertexFaces(v).begin(), m.vertexFaces(v).end());
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    int n = 0;
+    for (Index f : faces)
+        n += !faceIsConsistent(m, f);
+    return n;
+}
+
+RadialClassification classifyRadialFaces(const ConsistentMesh& m) {
+    RadialClassification c;
+    c.radial.assign(m.faceCount(), 0);
+    c.standard.assign(m.faceCount(), 0);
+    std::unordered_set<Index> onRadialEdge;
+    for (const auto& [k, tag] : m.edgeTags())
+        if (tag & kRadialEdge) {
+            const auto [a, b] = ConsistentMesh::edgeFromKey(k);
+            onRadialEdge.insert(a);
+            onRadialEdge.insert(b);
+        }
+    if (onRadialEdge.empty())
+        return c;
+    for (Index f = 0; f < m.faceCount(); ++f) {
+        const Triangle& t = m.face(f);
+        for (int i = 0; i < 3; ++i) {
+            const Index a = t[i], b = t[(i + 1) % 3], q = t[(i + 2) % 3];
+            if (!(m.edgeTag(a, b) & kRadialEdge))
+                continue;
+            c.radial[f] = 1;
+            const Index p = m.vertex(a).label == VertexLabel::Contour ? a : b;
+            const bool ccEdge = m.vertex(q).label == VertexLabel::Contour &&
+                                m.vertex(p).label == VertexLabel::Contour;
+            // q on another radial edge: one that is not a-b.
+            bool otherRadial = false;
+            for (Index w : m.neighbours(q))
+                if ((m.edgeTag(q, w) & kRadialEdge) && !(q == a && w == b) && !(q == b && w == a))
+                    otherRadial = true;
+            if (ccEdge || otherRadial)
+                c.standard[f] = 1;
+        }
+    }
+    return c;
+}
+
+Analysis analyse(const ConsistentMesh& m) {
+    Analysis a;
+    const Index nf = m.faceCount();
+    a.facing.resize(nf);
+    a.vbo.resize(nf);
+    a.consistent.resize(nf);
+    a.folded.resize(nf);
+    for (Index f = 0; f < nf; ++f) {
+        const Facing facing = faceFacing(m, f);
+        const Vbo vbo = faceVbo(m, f);
+        a.facing[f] = static_cast<int>(facing);
+        a.vbo[f] = static_cast<int>(vbo);
+        a.consistent[f] = isConsistent(vbo, facing) ? 1 : 0;
+        a.inconsistent += a.consistent[f] == 0;
+        if (vbo == Vbo::Undefined && a.undefinedVbo++ == 0)
+            a.firstUndefined = describeFace(m, f);
+        const std::optional<int> o = m.parameterOrientation(f);
+        a.folded[f] = o && *o <= 0 ? 1 : 0;
+        if (a.folded[f] && a.foldedFaces++ == 0)
+            a.firstFolded = describeFace(m, f);
+    }
+    for (const auto& [u, v] : m.edges()) {
+        const VertexLabel lu = m.vertex(u).label, lv = m.vertex(v).label;
+        if (static_cast<int>(lu) * static_cast<int>(lv) < 0 && a.fbEdges++ == 0)
+            a.firstFb = "edge " + std::to_string(u) + "-" + std::to_string(v);
+        const Index f0 = m.faceOfHalfedge(u, v), f1 = m.faceOfHalfedge(v, u);
+        if (f0 != kInvalidIndex && f1 != kInvalidIndex &&
+            isDegenerateEdge(lu, lv, static_cast<Vbo>(a.vbo[f0]), static_cast<Vbo>(a.vbo[f1])) &&
+            a.degenerate++ == 0)
+            a.firstDegenerate = "edge " + std::to_string(u) + "-" + std::to_string(v) +
+                                " between " + describeFace(m, f0) + " and " + describeFace(m, f1);
+    }
+    for (Index v = 0; v < m.vertexCount(); ++v) {
+        a.contourVertices += m.vertex(v).label == VertexLabel::Contour;
+        a.cusps += m.vertex(v).cusp;
+    }
+    return a;
+}
+
+void publish(Snapshot& s, ConsistentMesh& m) {
+    m.compact();
+    const double foldedBefore = s.counter("folded faces", 0.0);
+    s.mesh = m.toTriangleMesh();
+    const TriangleMesh& mesh = *s.mesh;
+    const Index nv = m.vertexCount();
+    std::vector<int> face(nv), label(nv), prov(nv), vphase(nv), cusp(nv);
+    std::vector<Vec3> uv(nv), normal(nv);
+    std::vector<double> g(nv), kr(nv), offset(nv);
+    for (Index v = 0; v < nv; ++v) {
+        const MeshVertex& x = m.vertex(v);
+        face[v] = x.preimage.face;
+        uv[v] = Vec3(x.preimage.u, x.preimage.v, 0.0);
+        normal[v] = x.normal;
+        g[v] = x.g;
+        kr[v] = x.radialCurvature;
+        label[v] = static_cast<int>(x.label);
+        prov[v] = static_cast<int>(x.provenance);
+        vphase[v] = x.phase;
+        cusp[v] = x.cusp ? 1 : 0;
+        offset[v] = x.normalOffset;
+    }
+    std::vector<int> fphase(m.faceCount());
+    for (Index f = 0; f < m.faceCount(); ++f)
+        fphase[f] = m.facePhase(f);
+    std::vector<int> radialEdge(mesh.edgeCount(), 0), cuspEdge(mesh.edgeCount(), 0);
+    long long radialEdges = 0;
+    for (Index e = 0; e < mesh.edgeCount(); ++e) {
+        const Index h = mesh.edgeHalfedge(e);
+        const int tag = m.edgeTag(mesh.from(h), mesh.to(h));
+        radialEdge[e] = (tag & kRadialEdge) ? 1 : 0;
+        cuspEdge[e] = (tag & kCuspEdge) ? 1 : 0;
+        radialEdges += radialEdge[e];
+    }
+    Analysis a = analyse(m);
+    RadialClassification radial = classifyRadialFaces(m);
+    const long long radialFaces = std::count(radial.radial.begin(), radial.radial.end(), 1);
+    const long long standardFaces = std::count(radial.standard.begin(), radial.standard.end(), 1);
+    using L = FieldLocation;
+    s.fields.erase(fields::kDomainFace);
+    s.setField(fields::kPreimageFace,
+               {L::Vertex, std::move(face), "domain face of the vertex's preimage"});
+    s.setField(fields::kPreimageUv, {L::Vertex, std::move(uv), "(u, v, 0) in that domain face"});
+    s.setField(fields::kVertexNormal, {L::Vertex, std::move(normal), "limit normal n(u)"});
+    s.setField(fields::kG, {L::Vertex, std::move(g), "g(u) = (c - f(u)) · n(u), > 0 front"});
+    s.setField(fields::kRadialCurvature,
+               {L::Vertex, std::move(kr), "radial curvature at the preimage (< 0 exterior)"});
+    s.setField(fields::kLabel, {L::Vertex, std::move(label), "R_S label: +1 F, -1 B, 0 C"});
+    s.setField(fields::kProvenance,
+               {L::Vertex, std::move(prov), "0 initial, 1 inserted, 2 shifted, 3 wiggled"});
+    s.setField(fields::kVertexChangedByPhase,
+               {L::Vertex, std::move(vphase), "phase that created or last changed the vertex"});
+    s.setField(fields::kCusp, {L::Vertex, std::move(cusp), "1 at a cusp vertex"});
+    s.setField(fields::kNormalOffset,
+               {L::Vertex, std::move(offset), "offset along n(u) of the normal wiggle"});
+    s.setField(fields::kChangedByPhase,
+               {L::Face, std::move(fphase), "phase that created or last changed the face"});
+    s.setField(fields::kFacing,
+               {L::Face, std::move(a.facing), "+1 front, -1 back, 0 edge-on (exact)"});
+    s.setField(fields::kVbo, {L::Face, std::move(a.vbo),
+                              "VBO (Definition 1): +1 F, -1 B, 0 "
+                              "undefined"});
+    s.setField(fields::kConsistent, {L::Face, std::move(a.consistent),
+                                     "1 contour-consistent (Definition 2), 0 inconsistent"});
+    s.setField(fields::kFolded,
+               {L::Face, std::move(a.folded), "1 folded in parameter space (against the domain)"});
+    s.setField(fields::kRadial,
+               {L::Face, std::move(radial.radial), "1 radial triangle (Definition 5)"});
+    s.setField(fields::kStandardRadial,
+               {L::Face, std::move(radial.standard), "1 standard radial triangle (§6.3)"});
+    s.setField(fields::kRadialEdge,
+               {L::Edge, std::move(radialEdge), "1 radial edge p-r (Definition 5)"});
+    s.setField(fields::kCuspEdge,
+               {L::Edge, std::move(cuspEdge), "1 FB edge holding a cusp, inserted last"});
+    s.setCounter("faces", m.faceCount());
+    s.setCounter("vertices", nv);
+    s.setCounter("inconsistent faces", static_cast<double>(a.inconsistent));
+    s.setCounter("undefined VBOs", static_cast<double>(a.undefinedVbo));
+    s.setCounter("FB edges left", static_cast<double>(a.fbEdges));
+    s.setCounter("degenerate CC edges", static_cast<double>(a.degenerate));
+    s.setCounter("contour vertices", static_cast<double>(a.contourVertices));
+    s.setCounter("cusps", static_cast<double>(a.cusps));
+    s.setCounter("folded faces", static_cast<double>(a.foldedFaces));
+    s.setCounter("folds introduced",
+                 std::max(0.0, static_cast<double>(a.foldedFaces) - foldedBefore));
+    s.setCounter("radial edges", static_cast<double>(radialEdges));
+    s.setCounter("radial faces", static_cast<double>(radialFaces));
+    s.setCounter("standard radial faces", static_cast<double>(standardFaces));
+    addStatusNote(s);
+}
+
+// ------------------------------------------------------------ invariants
+
+InvariantCheck check(const std::string& name) {
+    return {name, 0, ""};
+}
+
+void violate(InvariantCheck& c, const std::string& example) {
+    if (c.violations++ == 0)
+        c.firstExample = example;
+}
+
+std::vector<InvariantCheck> commonChecks(const PhaseContext& ctx, const Snapshot& s,
+                                         const ConsistentMesh& m, const Analysis& a) {
+    InvariantCheck embedding =
+        check("every vertex lies at f(u) + offset n(u) of its preimage (offset 0 before the "
+              "normal wiggle)");
+    InvariantCheck folds = check("every face keeps the domain's orientation in parameter space");
+    InvariantCheck charts = check("every face's corners have a common chart (appendix B)");
+    InvariantCheck degenerate = check("no degenerate CC edge (Definition 3)");
+    const double tol = ctx.parameters.getDouble("embedding-tolerance") * sceneScale(m);
+    const TriangleMesh& mesh = *s.mesh;
+    for (Index v = 0; v < mesh.vertexCount(); ++v) {
+        const MeshVertex& x = m.vertex(v);
+        const SurfacePoint sp = m.surface().evaluate(x.preimage);
+        const Vec3 expected = sp.position + x.normalOffset * sp.normal();
+        if (!((mesh.position(v) - expected).norm() <= tol))
+            violate(embedding, "vertex " + std::to_string(v));
+    }
+    for (Index f = 0; f < m.faceCount(); ++f) {
+        if (!m.parameterOrientation(f))
+            violate(charts, "face " + std::to_string(f));
+        else if (a.folded[f])
+            violate(folds, describeFace(m, f));
+    }
+    degenerate.violations = a.degenerate;
+    degenerate.firstExample = a.firstDegenerate;
+    return {embedding, folds, charts, degenerate};
+}
+
+std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, const ConsistentMesh& m,
+                                                   const Analysis& a) {
+    InvariantCheck fb = check("no FB edge remains");
+    fb.violations = a.fbEdges;
+    fb.firstExample = a.firstFb;
+    InvariantCheck undefined = check("every face has a defined VBO");
+    undefined.violations = a.undefinedVbo;
+    undefined.firstExample = a.firstUndefined;
+    InvariantCheck root = check("every C vertex has |g| <= root tolerance");
+    InvariantCheck valence = check("every cusp vertex has valence 4");
+    const double tol = ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
+    for (Index v = 0; v < m.vertexCount(); ++v) {
+        const MeshVertex& x = m.vertex(v);
+        // The normal wiggle moves vertices off the surface; g at the
+        // preimage is unchanged by it.
+        if (x.label == VertexLabel::Contour && !(std::abs(x.g) <= tol))
+            violate(root, "vertex " + std::to_string(v) + " g " + std::to_string(x.g));
+        if (x.cusp && m.neighbours(v).size() != 4)
+            violate(valence, "vertex " + std::to_string(v) + " valence " +
+                                 std::to_string(m.neighbours(v).size()));
+    }
+    return {fb, undefined, root, valence};
+}
+
+} // namespace contour::consistent

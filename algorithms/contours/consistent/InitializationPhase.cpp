@@ -1,0 +1,102 @@
+// Initialization (Bénard 2014 §6.1, Fig. 15a-c; notes §2.1).
+#include "contours/consistent/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
+#include "surface/SurfaceTessellation.h"
+
+namespace contour::consistent {
+
+namespace {
+
+// §6.1 (Fig. 15a-c, notes §2.1): the domain (for Catmull-Clark the cage
+// subdivided once, all quads) tessellated at level 1, each quad split into
+// two triangles, vertices at their limit positions and labelled by sign(g);
+// then the sign-crossing search on FF and BB edges.
+void runInitialization(const PhaseContext& ctx, Snapshot& s) {
+    const std::shared_ptr<const SmoothSurface> surface = surfaceFor(ctx, s);
+    ConsistentMesh m(surface, ctx.camera, ctx.parameters.getDouble("chart-tolerance"));
+    const int phase = s.phaseIndex;
+    // Step 1-3: subdivide once (the Catmull-Clark domain already is), split
+    // quads, move to the limit (SurfaceTessellation at level 1).
+    const SurfaceTessellation t = tessellate(*surface, 1);
+    for (const Preimage& p : t.preimages) {
+        MeshVertex v = m.evaluate(p);
+        v.phase = phase;
+        m.addVertex(v);
+    }
+    for (Index f = 0; f < t.mesh->faceCount(); ++f)
+        m.addFace(t.mesh->triangle(f), phase);
+    s.setCounter("initial faces", m.faceCount());
+    ctx.checkCancelled();
+    // Step 4: sign-crossing detection with `crossing-samples` samples of
+    // R_S per FF or BB edge, along the interpolated preimage (appendix B);
+    // the edge is split at the first sample whose label differs (which one
+    // to use is unspecified in the paper), into two FB edges (Fig. 16a).
+    const int samples = ctx.parameters.getInt("crossing-samples");
+    long long splits = 0, cancelled = 0;
+    const auto edges = m.edges();
+    for (size_t i = 0; i < edges.size(); ++i) {
+        if (i % 4096 == 0)
+            ctx.checkCancelled();
+        const auto [a, b] = edges[i];
+        const VertexLabel la = m.vertex(a).label;
+        if (la == VertexLabel::Contour || la != m.vertex(b).label)
+            continue;
+        for (int k = 1; k <= samples; ++k) {
+            const double tk = static_cast<double>(k) / (samples + 1);
+            const std::optional<Preimage> p =
+                m.interpolate(m.vertex(a).preimage, m.vertex(b).preimage, tk);
+            if (!p) {
+                ++cancelled;
+                break;
+            }
+            MeshVertex v = m.evaluate(*p);
+            if (v.label == la)
+                continue;
+            v.provenance = Provenance::Inserted;
+            m.splitEdge(a, b, v, phase);
+            ++splits;
+            break;
+        }
+    }
+    publish(s, m);
+    s.setCounter("sign-crossing splits", static_cast<double>(splits));
+    s.setCounter("cancelled interpolations", static_cast<double>(cancelled));
+    if (cancelled > 0)
+        s.notes.push_back(std::to_string(cancelled) +
+                          " edges were not searched for sign crossings: their endpoints' "
+                          "preimages have no common chart (appendix B)");
+}
+
+std::vector<InvariantCheck> checkInitialization(const PhaseContext& ctx, const Snapshot& s) {
+    const ConsistentMesh m = reload(ctx, s);
+    const Analysis a = analyse(m);
+    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
+    InvariantCheck labels = check("every vertex's label is sign(g) at its preimage");
+    for (Index v = 0; v < m.vertexCount(); ++v)
+        if (m.vertex(v).label != labelFromG(m.vertex(v).g))
+            violate(labels, "vertex " + std::to_string(v));
+    out.push_back(labels);
+    return out;
+}
+
+} // namespace
+
+void addInitializationPhase(Method& m) {
+    m.parameters.push_back(
+        {"crossing-samples",
+         "Sign-crossing samples",
+         "Samples of sign(g) per FF or BB edge in the sign-crossing search (§6.1; paper: 10).",
+         ParameterType::Int,
+         10,
+         1,
+         1000,
+         {}});
+    m.phases.push_back(
+        {"initialization",
+         "§6.1 (Fig. 15a-c): the smooth surface's domain (Catmull-Clark: cage subdivided once) "
+         "triangulated, vertices at the limit and labelled by sign(g); sign-crossing search "
+         "on FF and BB edges with crossing-samples samples, splitting at the first crossing.",
+         runInitialization, checkInitialization});
+}
+
+} // namespace contour::consistent
