@@ -20,10 +20,16 @@ using namespace contour::testing;
 
 namespace {
 
-constexpr int kInitialization = 1, kContourInsertion = 2, kChaining = 3; // snapshot indices
-
 struct ViewRun {
     std::vector<Snapshot> snapshots;
+    // The snapshot a phase produced (phases are looked up by name: later
+    // sub-phases are inserted between these).
+    const Snapshot& after(const std::string& phase) const {
+        for (const Snapshot& s : snapshots)
+            if (s.phaseName == phase)
+                return s;
+        throw std::runtime_error("no phase " + phase);
+    }
 };
 
 ViewRun runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera) {
@@ -62,7 +68,7 @@ void report(const char* name, const Tally& t, int views) {
 
 void tally(Tally& t, const ViewRun& r) {
     for (int k = 0; k < 2; ++k) {
-        const Snapshot& s = r.snapshots[kInitialization + k];
+        const Snapshot& s = r.after(k == 0 ? "initialization" : "contour-insertion");
         const double n = s.counter("inconsistent faces");
         t.inconsistent[k] += n;
         t.worst[k] = std::max(t.worst[k], n);
@@ -165,7 +171,7 @@ private slots:
             QCOMPARE(static_cast<int>(r.snapshots.size()), 4);
             for (const Snapshot& s : r.snapshots)
                 verifyNoViolations(s);
-            const Snapshot& ins = r.snapshots[kContourInsertion];
+            const Snapshot& ins = r.after("contour-insertion");
             QCOMPARE(ins.counter("FB edges left"), 0.0);
             QCOMPARE(ins.counter("undefined VBOs"), 0.0);
             QCOMPARE(ins.counter("degenerate CC edges"), 0.0);
@@ -178,7 +184,7 @@ private slots:
                 if (label[i] == 0)
                     QVERIFY2(std::abs(g[i]) <= tol, qPrintable(QString("g = %1").arg(g[i])));
             int open = 0;
-            const int loops = contourLoops(r.snapshots[kChaining], &open);
+            const int loops = contourLoops(r.after("chaining"), &open);
             QCOMPARE(open, 0);
             if (shapeName == "sphere")
                 QCOMPARE(loops, 1);
@@ -200,8 +206,8 @@ private slots:
             const ViewRun r = runViews(cage, camera);
             for (const Snapshot& s : r.snapshots)
                 verifyNoViolations(s);
-            QCOMPARE(r.snapshots[kContourInsertion].counter("FB edges left"), 0.0);
-            QCOMPARE(r.snapshots[kContourInsertion].counter("undefined VBOs"), 0.0);
+            QCOMPARE(r.after("contour-insertion").counter("FB edges left"), 0.0);
+            QCOMPARE(r.after("contour-insertion").counter("undefined VBOs"), 0.0);
             tally(t, r);
         }
         report("spot_control_mesh", t, static_cast<int>(views.size()));
