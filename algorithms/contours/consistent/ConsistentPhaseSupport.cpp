@@ -113,6 +113,17 @@ bool faceIsConsistent(const ConsistentMesh& m, Index f) {
     return isConsistent(faceVbo(m, f), faceFacing(m, f));
 }
 
+Index faceDomainFace(const ConsistentMesh& m, Index f) {
+    const Triangle& t = m.face(f);
+    const std::optional<Preimage> mid =
+        m.interpolate(m.vertex(t[0]).preimage, m.vertex(t[1]).preimage, 0.5);
+    if (!mid)
+        return kInvalidIndex;
+    const std::optional<Preimage> centroid =
+        m.interpolate(*mid, m.vertex(t[2]).preimage, 1.0 / 3.0);
+    return centroid ? centroid->face : kInvalidIndex;
+}
+
 int inconsistentFacesAround(const ConsistentMesh& m, const std::vector<Index>& vertices) {
     std::vector<Index> faces;
     for (Index v : vertices)
@@ -221,9 +232,11 @@ void publish(Snapshot& s, ConsistentMesh& m) {
         cusp[v] = x.cusp ? 1 : 0;
         offset[v] = x.normalOffset;
     }
-    std::vector<int> fphase(m.faceCount());
-    for (Index f = 0; f < m.faceCount(); ++f)
+    std::vector<int> fphase(m.faceCount()), domainFace(m.faceCount());
+    for (Index f = 0; f < m.faceCount(); ++f) {
         fphase[f] = m.facePhase(f);
+        domainFace[f] = faceDomainFace(m, f);
+    }
     std::vector<int> radialEdge(mesh.edgeCount(), 0), cuspEdge(mesh.edgeCount(), 0);
     long long radialEdges = 0;
     for (Index e = 0; e < mesh.edgeCount(); ++e) {
@@ -238,7 +251,9 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     const long long radialFaces = std::count(radial.radial.begin(), radial.radial.end(), 1);
     const long long standardFaces = std::count(radial.standard.begin(), radial.standard.end(), 1);
     using L = FieldLocation;
-    s.fields.erase(fields::kDomainFace);
+    s.setField(fields::kDomainFace,
+               {L::Face, std::move(domainFace),
+                "domain face holding the triangle's centroid (-1: no common chart)"});
     s.setField(fields::kPreimageFace,
                {L::Vertex, std::move(face), "domain face of the vertex's preimage"});
     s.setField(fields::kPreimageUv, {L::Vertex, std::move(uv), "(u, v, 0) in that domain face"});
@@ -338,7 +353,8 @@ std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, cons
     undefined.violations = a.undefinedVbo;
     undefined.firstExample = a.firstUndefined;
     InvariantCheck root = check("every C vertex has |g| <= root tolerance");
-    InvariantCheck valence = check("every cusp vertex has valence 4");
+    InvariantCheck valence = check("every cusp vertex has valence 4 until radial edges are added "
+                                   "around it (Fig. 18d-e)");
     const double tol = ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
     for (Index v = 0; v < m.vertexCount(); ++v) {
         const MeshVertex& x = m.vertex(v);
@@ -346,7 +362,10 @@ std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, cons
         // preimage is unchanged by it.
         if (x.label == VertexLabel::Contour && !(std::abs(x.g) <= tol))
             violate(root, "vertex " + std::to_string(v) + " g " + std::to_string(x.g));
-        if (x.cusp && m.neighbours(v).size() != 4)
+        bool radial = false;
+        for (Index w : x.cusp ? m.neighbours(v) : std::vector<Index>{})
+            radial = radial || (m.edgeTag(v, w) & kRadialEdge);
+        if (x.cusp && !radial && m.neighbours(v).size() != 4)
             violate(valence, "vertex " + std::to_string(v) + " valence " +
                                  std::to_string(m.neighbours(v).size()));
     }

@@ -31,6 +31,9 @@ std::string describeFace(const ConsistentMesh& m, Index f);
 Vbo faceVbo(const ConsistentMesh& m, Index f);
 Facing faceFacing(const ConsistentMesh& m, Index f);
 bool faceIsConsistent(const ConsistentMesh& m, Index f);
+// The domain face holding the face's centroid (appendix B interpolation),
+// kInvalidIndex when its corners have no common chart.
+Index faceDomainFace(const ConsistentMesh& m, Index f);
 // Inconsistent faces among the faces around the given vertices (each face
 // once): the local objective of the optimization phases (§6.4).
 int inconsistentFacesAround(const ConsistentMesh& m, const std::vector<Index>& vertices);
