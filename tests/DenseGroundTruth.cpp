@@ -1,6 +1,7 @@
 #include "DenseGroundTruth.h"
 
 #include "camera/Facing.h"
+#include "contours/consistent/ConsistentMesh.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SurfaceFields.h"
 
@@ -413,9 +414,49 @@ std::vector<MethodLoop> methodLoops(const Snapshot& snapshot) {
     return loops;
 }
 
-TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot) {
+std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
+                                                 std::shared_ptr<const SmoothSurface> surface) {
+    std::vector<MethodLoop> loops;
+    const Field* faceField = snapshot.field(fields::kPreimageFace);
+    const Field* uvField = snapshot.field(fields::kPreimageUv);
+    if (!snapshot.curves || !faceField || !uvField || !faceField->labels() || !uvField->vectors())
+        throw std::invalid_argument("methodLoopsFromPreimages: the snapshot has no preimages");
+    const auto& face = *faceField->labels();
+    const auto& uv = *uvField->vectors();
+    // Only the chart interpolation of the mesh is used (no camera-dependent
+    // part), so any camera will do.
+    const consistent::ConsistentMesh charts(std::move(surface), Camera{}, 1e-9);
+    const auto preimage = [&](Index v) {
+        return Preimage{face[v], uv[v].x(), uv[v].y()};
+    };
+    for (const Polyline& line : *snapshot.curves) {
+        if (line.type != CurveType::Contour)
+            continue;
+        MethodLoop loop;
+        loop.closed = line.closed;
+        for (size_t i = 0; i + 1 < line.points.size(); ++i) {
+            const Index a = line.points[i].vertex, b = line.points[i + 1].vertex;
+            if (a == kInvalidIndex || b == kInvalidIndex)
+                continue;
+            for (double t : {0.05, 0.25, 0.5, 0.75, 0.95})
+                if (const std::optional<Preimage> p =
+                        charts.interpolate(preimage(a), preimage(b), t))
+                    loop.faces.push_back(p->face);
+        }
+        std::sort(loop.faces.begin(), loop.faces.end());
+        loop.faces.erase(std::unique(loop.faces.begin(), loop.faces.end()), loop.faces.end());
+        loops.push_back(std::move(loop));
+    }
+    return loops;
+}
+
+TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot,
+                                   std::shared_ptr<const SmoothSurface> surface) {
     TopologyComparison r;
-    const std::vector<MethodLoop> method = methodLoops(snapshot);
+    const std::vector<MethodLoop> method =
+        surface && snapshot.field(fields::kPreimageFace)
+            ? methodLoopsFromPreimages(snapshot, std::move(surface))
+            : methodLoops(snapshot);
     r.truthLoops = static_cast<int>(truth.loops.size());
     r.truthOpenLoops = truth.openLoops();
     r.methodLoops = static_cast<int>(method.size());
@@ -428,6 +469,7 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
         double jaccard;
         int truth, method;
         bool same;
+        int common;
     };
     std::vector<Pair> pairs;
     for (int t = 0; t < r.truthLoops; ++t)
@@ -440,7 +482,8 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
             if (common.empty())
                 continue;
             const double united = static_cast<double>(a.size() + b.size() - common.size());
-            pairs.push_back({static_cast<double>(common.size()) / united, t, m, a == b});
+            pairs.push_back({static_cast<double>(common.size()) / united, t, m, a == b,
+                             static_cast<int>(common.size())});
         }
     std::sort(pairs.begin(), pairs.end(),
               [](const Pair& x, const Pair& y) { return x.jaccard > y.jaccard; });
@@ -452,6 +495,9 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
         truthUsed[p.truth] = methodUsed[p.method] = 1;
         ++r.matchedLoops;
         r.sameFaceLoops += p.same;
+        r.facesInBoth += p.common;
+        r.facesOnlyInTruth += static_cast<int>(truth.loops[p.truth].faces.size()) - p.common;
+        r.facesOnlyInMethod += static_cast<int>(method[p.method].faces.size()) - p.common;
         sum += p.jaccard;
     }
     r.meanJaccard = r.truthLoops > 0 ? sum / r.truthLoops : (r.methodLoops == 0 ? 1.0 : 0.0);

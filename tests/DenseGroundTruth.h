@@ -71,6 +71,7 @@ public:
     DenseGroundTruth(std::shared_ptr<const SmoothSurface> surface, GroundTruthOptions options = {});
 
     const SmoothSurface& surface() const { return *surface_; }
+    const std::shared_ptr<const SmoothSurface>& surfacePtr() const { return surface_; }
     const GroundTruthOptions& options() const { return options_; }
     double samplingSeconds() const { return samplingSeconds_; }
     size_t sampleCount() const { return positions_.size(); }
@@ -103,6 +104,7 @@ struct TopologyComparison {
     int matchedLoops = 0;     // pairs with at least one common face
     int sameFaceLoops = 0;    // matched pairs whose face sets are equal
     double meanJaccard = 0.0; // over truth loops (unmatched count 0); 1 if none
+    int facesOnlyInTruth = 0, facesOnlyInMethod = 0, facesInBoth = 0; // over matched pairs
     int truthCusps = 0;
     int methodCusps = -1; // the snapshot's "cusps" counter, -1 when it has none
 
@@ -121,7 +123,17 @@ struct MethodLoop {
     std::vector<Index> faces;
 };
 std::vector<MethodLoop> methodLoops(const Snapshot& snapshot);
+// For meshes whose vertices carry preimages (the consistent method: fields
+// preimage_face and preimage_uv): the domain faces a contour edge passes
+// through, from its endpoints' preimages interpolated across the domain
+// (appendix B charts) at several points along the edge; a triangle's domain
+// face would also count the faces its other corners reach into.
+std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
+                                                 std::shared_ptr<const SmoothSurface> surface);
 
-TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot);
+// `surface` given and the snapshot has preimages: methodLoopsFromPreimages,
+// otherwise methodLoops.
+TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot,
+                                   std::shared_ptr<const SmoothSurface> surface = nullptr);
 
 } // namespace contour::testing

@@ -247,18 +247,22 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     parameters.set("surface", std::string("catmull-clark"));
     const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
     int sameLoops = 0, sameFaces = 0, sameCusps = 0, truthCusps = 0, methodCusps = 0;
+    long long onlyTruth = 0, onlyMethod = 0, both = 0;
     double jaccard = 0.0, seconds = 0.0;
     for (size_t v = 0; v < views.size(); ++v) {
         const GroundTruth truth = dense.compute(views[v]);
         const auto start = std::chrono::steady_clock::now();
         const Snapshot snapshot = runMethod("consistent", cage, views[v], parameters);
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const TopologyComparison c = compareTopology(truth, snapshot);
+        const TopologyComparison c = compareTopology(truth, snapshot, dense.surfacePtr());
         sameLoops += c.loopCountsMatch();
         sameFaces += c.faceSetsMatch();
         sameCusps += c.cuspCountsMatch();
         truthCusps += c.truthCusps;
         methodCusps += std::max(0, c.methodCusps);
+        onlyTruth += c.facesOnlyInTruth;
+        onlyMethod += c.facesOnlyInMethod;
+        both += c.facesInBoth;
         jaccard += c.meanJaccard;
         if (!c.loopCountsMatch() || !c.cuspCountsMatch())
             qInfo("%s view %d: ground truth %d loops (%d open, %d cusps), consistent %d loops "
@@ -270,10 +274,12 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     const int n = int(views.size());
     qInfo("%s (%d domain faces, N = %d), consistent: loop counts match in %d/%d views (%.0f%%), "
           "crossed-face sets in %d/%d (%.0f%%), cusp counts in %d/%d (%.0f%%; %d ground-truth "
-          "cusps, %d found), mean Jaccard %.3f, %.2f s per view",
+          "cusps, %d found), mean Jaccard %.3f (crossed faces in both %lld, only in the ground "
+          "truth %lld, only in the method %lld), %.2f s per view",
           qPrintable(name), int(dense.surface().domain().faceCount()), dense.options().samples,
           sameLoops, n, 100.0 * sameLoops / n, sameFaces, n, 100.0 * sameFaces / n, sameCusps, n,
-          100.0 * sameCusps / n, truthCusps, methodCusps, jaccard / n, seconds / n);
+          100.0 * sameCusps / n, truthCusps, methodCusps, jaccard / n, both, onlyTruth, onlyMethod,
+          seconds / n);
     QVERIFY2(100 * sameLoops >= minLoopsPercent * n, "fewer views with matching loop counts");
     QVERIFY2(100 * sameCusps >= minCuspsPercent * n, "fewer views with matching cusp counts");
 }
