@@ -5,7 +5,9 @@
 #include "contours/Methods.h"
 #include "export/JsonReport.h"
 #include "export/SvgWriter.h"
+#include "mesh/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
+#include "pipeline/FieldNames.h"
 
 #include <QDir>
 #include <QFile>
@@ -13,6 +15,7 @@
 #include <QTemporaryDir>
 #include <QXmlStreamReader>
 #include <QtTest>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -466,6 +469,97 @@ private slots:
             QCOMPARE(view["camera"], expected[size_t(v)].toJson());
             QCOMPARE(readJson(out + "/cam" + suffix + ".json"), view["camera"]);
         }
+    }
+
+    // --ply writes the last snapshot's mesh with its int and double vertex
+    // and face fields; it reads back with the snapshot's counts, and the
+    // labels agree with the counters of the JSON report.
+    void plyOutput() {
+        const QString out = freshOutputDir("ply");
+        const QString spot = CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj";
+        const RunResult r = run({"--mesh", spot, "--method", "consistent", "--ply",
+                                 out + "/spot.ply", "--json", out + "/r.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(filesIn(out), QStringList({"r.json", "spot.ply"}));
+        const nlohmann::json counters = readJson(out + "/r.json")["views"][0]["totals"]["counters"];
+        PlyLabels labels;
+        const PolygonMesh mesh = readMesh((out + "/spot.ply").toStdString(), &labels);
+        QCOMPARE(mesh.faceCount(), counters["faces"].get<int>());
+        QCOMPARE(mesh.vertexCount(), counters["vertices"].get<int>());
+        for (Index f = 0; f < mesh.faceCount(); ++f)
+            QCOMPARE(mesh.face(f).size(), size_t(3));
+        using namespace fields;
+        for (const char* name : {kLabel, kCusp, kProvenance, kVertexChangedByPhase, kPreimageFace})
+            QVERIFY2(labels.vertexLabels.count(name), name);
+        for (const char* name : {kG, kRadialCurvature, kNormalOffset})
+            QVERIFY2(labels.vertexScalars.count(name), name);
+        for (const char* name : {kFacing, kVbo, kConsistent, kRadial, kStandardRadial,
+                                 kChangedByPhase, kFolded, kDomainFace})
+            QVERIFY2(labels.faceLabels.count(name), name);
+        // Vector and edge fields have no PLY property.
+        QVERIFY(!labels.vertexScalars.count(kVertexNormal));
+        QVERIFY(!labels.faceLabels.count(kContourEdge));
+        const auto count = [](const std::vector<int>& column, int value) {
+            return static_cast<int>(std::count(column.begin(), column.end(), value));
+        };
+        QCOMPARE(count(labels.faceLabels[kConsistent], 0),
+                 counters["inconsistent faces"].get<int>());
+        QCOMPARE(count(labels.vertexLabels[kLabel], 0), counters["contour vertices"].get<int>());
+        QCOMPARE(count(labels.vertexLabels[kCusp], 1), counters["cusps"].get<int>());
+        QVERIFY(count(labels.vertexLabels[kLabel], 0) > 0);
+        QCOMPARE(count(labels.faceLabels[kVbo], 1) + count(labels.faceLabels[kVbo], -1) +
+                     count(labels.faceLabels[kVbo], 0),
+                 mesh.faceCount());
+    }
+
+    // With --views26, one PLY per view; with --phase, the mesh after it.
+    void plyPerViewAndPhase() {
+        const QString out = freshOutputDir("ply-views26");
+        RunResult r =
+            run({"--mesh", sphere_, "--method", "mesh", "--views26", "--ply", out + "/s.ply"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(filesIn(out).size(), 26);
+        const int triangles = sphereMesh_.triangulate().faceCount();
+        for (int v = 0; v < 26; ++v) {
+            const QString suffix = QString("_view%1").arg(v, 2, 10, QChar('0'));
+            PlyLabels labels;
+            const PolygonMesh mesh =
+                readMesh((out + "/s" + suffix + ".ply").toStdString(), &labels);
+            QCOMPARE(mesh.faceCount(), triangles);
+            QVERIFY(labels.faceLabels.count(fields::kFacing));
+        }
+        const QString phase = freshOutputDir("ply-phase");
+        r = run(
+            {"--mesh", sphere_, "--method", "mesh", "--phase", "0", "--ply", phase + "/input.ply"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        PlyLabels labels;
+        const PolygonMesh mesh = readMesh((phase + "/input.ply").toStdString(), &labels);
+        QCOMPARE(mesh.faceCount(), triangles);
+        QVERIFY(!labels.faceLabels.count(fields::kFacing)); // facing has not run
+    }
+
+    // A --ply that cannot be written fails the run and leaves no file: a
+    // missing folder is found before the run; a folder in the file's place
+    // fails the write, which takes the other outputs along.
+    void plyUnwritable() {
+        const QString out = freshOutputDir("ply-unwritable");
+        RunResult r = run(
+            {"--mesh", sphere_, "--json", out + "/r.json", "--ply", out + "/missing-folder/m.ply"});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("missing-folder/m.ply: cannot write"), qPrintable(r.err));
+        QVERIFY2(filesIn(out).isEmpty(), qPrintable(filesIn(out).join(", ")));
+
+        QVERIFY(QDir(out).mkdir("a-folder.ply"));
+        r = run({"--mesh", sphere_, "--json", out + "/r.json", "--svg", out + "/r.svg", "--ply",
+                 out + "/a-folder.ply"});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("a-folder.ply"), qPrintable(r.err));
+        QVERIFY2(filesIn(out).isEmpty(), qPrintable(filesIn(out).join(", ")));
+        QVERIFY(QDir(out + "/a-folder.ply").isEmpty());
+
+        r = run({"--mesh", sphere_, "--json", out + "/same.out", "--ply", out + "/same.out"});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("--json and --ply name the same file"), qPrintable(r.err));
     }
 
     void cliErrors_data() {

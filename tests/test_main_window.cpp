@@ -208,6 +208,12 @@ void TestMainWindow::checkStepperMatchesRunner() {
             const Snapshot& after = runner->snapshot(phase + 1);
             for (const auto& [name, value] : counters)
                 QCOMPARE(value, after.counter(name.toStdString(), std::nan("")));
+            // With the collapsed group of unchanged ones: every counter of
+            // the snapshot.
+            const auto all = stepper->displayedCounters(phase, true);
+            QCOMPARE(all.size(), after.counters.size());
+            for (const auto& [name, value] : all)
+                QCOMPARE(value, after.counter(name.toStdString(), std::nan("")));
         } else {
             QCOMPARE(state, PhaseStepper::PhaseState::Pending);
             QVERIFY(counters.empty());

@@ -10,6 +10,8 @@ namespace contour {
 inline std::string fieldDisplayName(const std::string& field) {
     if (field == fields::kFacing)
         return "Front/back (facing)";
+    if (field == fields::kVbo)
+        return "Front/back (VBO)";
     if (field == fields::kG)
         return "g = (c \u2212 p) \u00b7 n";
     if (field == fields::kRadialCurvature)

@@ -7,9 +7,12 @@
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QLabel>
+#include <QRegularExpression>
 #include <QSpinBox>
 #include <QStandardItemModel>
 #include <QVBoxLayout>
+#include <algorithm>
+#include <cfloat>
 #include <climits>
 #include <cmath>
 
@@ -32,6 +35,40 @@ double numeric(const ParameterValue& value) {
 bool hasRange(const ParameterSpec& spec) {
     return spec.minimum < spec.maximum;
 }
+
+// A spin box for doubles of any magnitude: tolerances such as 1e-9 or 1e-20
+// would round to 0 at a fixed number of decimals and fail the method's range
+// check. Shows and parses %g; on a positive range spanning decades a step
+// multiplies or divides by 10^(1/4).
+class DoubleEdit : public QDoubleSpinBox {
+public:
+    explicit DoubleEdit(QWidget* parent) : QDoubleSpinBox(parent) {
+        setDecimals(DBL_MAX_10_EXP + DBL_DIG); // the most Qt allows: no rounding
+    }
+
+    QString textFromValue(double value) const override { return QString::number(value, 'g', 6); }
+
+    double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
+
+    QValidator::State validate(QString& text, int&) const override {
+        bool ok = false;
+        const double value = text.trimmed().toDouble(&ok);
+        if (ok)
+            return value >= minimum() && value <= maximum() ? QValidator::Acceptable
+                                                            : QValidator::Intermediate;
+        // The start of a number ("", "-", "1e", "1e-").
+        static const QRegularExpression partial(
+            QStringLiteral("^\\s*[+-]?(\\d*\\.?\\d*)([eE][+-]?\\d*)?\\s*$"));
+        return partial.match(text).hasMatch() ? QValidator::Intermediate : QValidator::Invalid;
+    }
+
+    void stepBy(int steps) override {
+        if (minimum() > 0.0 && maximum() / minimum() > 1e3 && value() > 0.0)
+            setValue(std::clamp(value() * std::pow(10.0, 0.25 * steps), minimum(), maximum()));
+        else
+            QDoubleSpinBox::stepBy(steps);
+    }
+};
 
 } // namespace
 
@@ -152,8 +189,7 @@ void MethodPanel::rebuildForm() {
             break;
         }
         case ParameterType::Double: {
-            auto* box = new QDoubleSpinBox(formHost_);
-            box->setDecimals(6);
+            auto* box = new DoubleEdit(formHost_);
             if (hasRange(spec)) {
                 box->setRange(spec.minimum, spec.maximum);
                 box->setSingleStep((spec.maximum - spec.minimum) / 100.0);

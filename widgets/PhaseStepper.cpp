@@ -15,7 +15,13 @@ namespace {
 // Item data: what a child row is, and a counter's value.
 constexpr int kKindRole = Qt::UserRole + 1;
 constexpr int kValueRole = Qt::UserRole + 2;
-enum RowKind { kCounterRow = 1, kInvariantRow = 2, kNoteRow = 3 };
+enum RowKind {
+    kCounterRow = 1,
+    kInvariantRow = 2,
+    kNoteRow = 3,
+    kUnchangedGroupRow = 4,
+    kUnchangedCounterRow = 5
+};
 
 QString formatValue(double value) {
     if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 1e15)
@@ -29,27 +35,50 @@ QString formatSeconds(double seconds) {
     return QStringLiteral("%1 s").arg(seconds, 0, 'f', 2);
 }
 
-// Counters that `after` set or changed relative to `before`.
-std::vector<Counter> changedCounters(const Snapshot& before, const Snapshot& after) {
-    std::vector<Counter> changed;
+// Counters that `after` set or changed relative to `before`, and the others.
+struct CounterSplit {
+    std::vector<Counter> changed, unchanged;
+};
+CounterSplit splitCounters(const Snapshot* before, const Snapshot& after) {
+    CounterSplit split;
     for (const Counter& c : after.counters) {
-        const double old = before.counter(c.name, std::nan(""));
+        const double old = before ? before->counter(c.name, std::nan("")) : std::nan("");
         if (std::isnan(old) || old != c.value)
-            changed.push_back(c);
+            split.changed.push_back(c);
+        else
+            split.unchanged.push_back(c);
     }
-    return changed;
+    return split;
 }
 
-void fillDetails(QTreeWidgetItem* item, const std::vector<Counter>& counters,
-                 const Snapshot& snapshot) {
+QTreeWidgetItem* addCounterRow(QTreeWidgetItem* parent, const Counter& c, RowKind kind) {
+    auto* row = new QTreeWidgetItem(parent);
+    row->setText(0, QString::fromStdString(c.name));
+    row->setText(1, formatValue(c.value));
+    row->setTextAlignment(1, Qt::AlignRight | Qt::AlignVCenter);
+    row->setData(0, kKindRole, kind);
+    row->setData(0, kValueRole, c.value);
+    return row;
+}
+
+void fillDetails(QTreeWidgetItem* item, const CounterSplit& counters, const Snapshot& snapshot) {
     qDeleteAll(item->takeChildren());
-    for (const Counter& c : counters) {
-        auto* row = new QTreeWidgetItem(item);
-        row->setText(0, QString::fromStdString(c.name));
-        row->setText(1, formatValue(c.value));
-        row->setTextAlignment(1, Qt::AlignRight | Qt::AlignVCenter);
-        row->setData(0, kKindRole, kCounterRow);
-        row->setData(0, kValueRole, c.value);
+    for (const Counter& c : counters.changed)
+        addCounterRow(item, c, kCounterRow);
+    // The state the phase left unchanged (e.g. the consistent method's
+    // "inconsistent faces" staying 0) is still there to look at.
+    if (!counters.unchanged.empty()) {
+        auto* group = new QTreeWidgetItem(item);
+        group->setText(0, QStringLiteral("unchanged counters (%1)").arg(counters.unchanged.size()));
+        group->setToolTip(0, QStringLiteral("Counters of this snapshot that the phase did not "
+                                            "change"));
+        group->setForeground(0, QColor(120, 120, 120));
+        group->setData(0, kKindRole, kUnchangedGroupRow);
+        for (const Counter& c : counters.unchanged) {
+            QTreeWidgetItem* row = addCounterRow(group, c, kUnchangedCounterRow);
+            row->setForeground(0, QColor(120, 120, 120));
+            row->setForeground(1, QColor(120, 120, 120));
+        }
     }
     long long failed = 0;
     for (const InvariantCheck& check : snapshot.invariants) {
@@ -192,17 +221,32 @@ QTreeWidgetItem* PhaseStepper::phaseItem(int phase) const {
     return tree_->topLevelItem(phase + 1); // item 0 is the input
 }
 
-std::vector<std::pair<QString, double>> PhaseStepper::displayedCounters(int phase) const {
+std::vector<std::pair<QString, double>>
+PhaseStepper::displayedCounters(int phase, bool includeUnchanged) const {
     std::vector<std::pair<QString, double>> counters;
     const QTreeWidgetItem* item = phase < 0 ? tree_->topLevelItem(0) : phaseItem(phase);
     if (!item)
         return counters;
     for (int i = 0; i < item->childCount(); ++i) {
         const QTreeWidgetItem* row = item->child(i);
-        if (row->data(0, kKindRole).toInt() == kCounterRow)
+        const int kind = row->data(0, kKindRole).toInt();
+        if (kind == kCounterRow)
             counters.emplace_back(row->text(0), row->data(0, kValueRole).toDouble());
+        if (kind == kUnchangedGroupRow && includeUnchanged)
+            for (int j = 0; j < row->childCount(); ++j)
+                counters.emplace_back(row->child(j)->text(0),
+                                      row->child(j)->data(0, kValueRole).toDouble());
     }
     return counters;
+}
+
+QStringList PhaseStepper::displayedNotes(int phase) const {
+    QStringList notes;
+    const QTreeWidgetItem* item = phase < 0 ? tree_->topLevelItem(0) : phaseItem(phase);
+    for (int i = 0; item && i < item->childCount(); ++i)
+        if (item->child(i)->data(0, kKindRole).toInt() == kNoteRow)
+            notes << item->child(i)->text(0);
+    return notes;
 }
 
 QString PhaseStepper::displayedTime(int phase) const {
@@ -225,7 +269,7 @@ void PhaseStepper::refresh() {
                       : atInput          ? toString(PhaseState::Current)
                                          : toString(PhaseState::Done));
     if (!snapshots_.empty())
-        fillDetails(input, snapshots_[0].counters, snapshots_[0]);
+        fillDetails(input, splitCounters(nullptr, snapshots_[0]), snapshots_[0]);
     else
         qDeleteAll(input->takeChildren());
 
@@ -245,7 +289,7 @@ void PhaseStepper::refresh() {
         if (ran) {
             const Snapshot& after = snapshots_[phase + 1];
             item->setText(2, formatSeconds(after.phaseSeconds));
-            fillDetails(item, changedCounters(snapshots_[phase], after), after);
+            fillDetails(item, splitCounters(&snapshots_[phase], after), after);
             if (after.invariantViolations() > 0)
                 item->setForeground(1, QColor(200, 30, 30));
         } else {

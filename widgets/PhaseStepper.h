@@ -1,12 +1,14 @@
 #pragma once
 // Lists a method's phases with their state (done / current / pending, or
 // running), and for each phase that has run its time, the counters it set or
-// changed, its post-condition violations and its notes. Buttons ask to reset,
+// changed, the other counters of its snapshot (unchanged, in a collapsed
+// group), its post-condition violations and its notes. Buttons ask to reset,
 // step back, step, or run to the end; the owner runs the phases.
 #include "pipeline/Method.h"
 #include "pipeline/Snapshot.h"
 
 #include <QString>
+#include <QStringList>
 #include <QWidget>
 #include <utility>
 #include <vector>
@@ -37,8 +39,12 @@ public:
     int completedPhases() const { return completed_; }
     PhaseState phaseState(int phase) const;
     static QString toString(PhaseState state);
-    // What the list shows for a phase: its counters (name, value) and time.
-    std::vector<std::pair<QString, double>> displayedCounters(int phase) const;
+    // What the list shows for a phase: the counters it set or changed (name,
+    // value), or with `includeUnchanged` every counter of its snapshot, and
+    // its time and notes.
+    std::vector<std::pair<QString, double>> displayedCounters(int phase,
+                                                              bool includeUnchanged = false) const;
+    QStringList displayedNotes(int phase) const;
     QString displayedTime(int phase) const;
 
     QPushButton* resetButton() const { return reset_; }

@@ -1,8 +1,9 @@
 #pragma once
 // The colours the views use, in one place so that tests can look for them in
-// grabbed images. Faces are coloured by the face field fields::kFacing (the
-// two facing colours differ in hue, yellow against blue, which survives
-// shading because lighting only scales a colour) or by a signed scalar field.
+// grabbed images. Faces are coloured by the face field fields::kFacing or
+// fields::kVbo (the two facing colours differ in hue, yellow against blue,
+// which survives shading because lighting only scales a colour) or by a
+// signed scalar field.
 #include <QColor>
 
 namespace contour {
@@ -27,6 +28,23 @@ inline constexpr SceneColor kContour2D{0.0, 0.0, 0.0};           // black on the
 inline constexpr SceneColor kBoundary{0.10, 0.70, 0.25};         // green
 inline constexpr SceneColor kIntersection{0.85, 0.20, 0.85};     // magenta
 inline constexpr SceneColor kFrustum{0.92, 0.92, 0.92};          // light grey
+// Consistent contours (Bénard 2014). Faces coloured by VBO use the facing
+// colours for F and B and this green for an undefined VBO.
+inline constexpr SceneColor kUndefinedVbo{0.25, 0.85, 0.15}; // green, hue ~109°
+// Overlays: outlines of inconsistent faces (drawn over everything), tints of
+// radial and standard radial triangles (translucent, kRadialTintOpacity),
+// radial edges, contour (C) vertices as round dots, cusps as large squares.
+inline constexpr SceneColor kInconsistentOutline{1.0, 0.0, 1.0};   // magenta, hue 300°
+inline constexpr SceneColor kRadialTint{1.0, 0.50, 0.05};          // orange, hue ~28°
+inline constexpr SceneColor kStandardRadialTint{0.10, 0.70, 0.65}; // teal, hue ~177°
+inline constexpr double kRadialTintOpacity = 0.6;
+inline constexpr SceneColor kRadialEdge{0.12, 0.12, 0.12}; // charcoal
+inline constexpr SceneColor kContourVertex{1.0, 1.0, 1.0}; // white
+inline constexpr SceneColor kCuspVertex{0.0, 0.90, 1.0};   // cyan, hue ~186°
+inline constexpr double kInconsistentOutlineWidth = 3.0;   // pixels
+inline constexpr double kRadialEdgeWidth = 2.5;            // pixels
+inline constexpr double kContourVertexSize = 7.0;          // pixels
+inline constexpr double kCuspVertexSize = 15.0;            // pixels
 // Signed scalar fields (DivergingColorMap.h): Moreland's cool-to-warm end
 // colours at -m and +m (the centre, 0, is a light grey, ~0.87), NaN in a
 // darker neutral grey. Contours are black over a scalar field, which has red

@@ -153,6 +153,87 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     scalarBar_->VisibilityOff();
     ren->AddActor2D(scalarBar_);
 
+    // VBO -1, 0, +1 map to table entries 0, 1, 2: B, undefined, F.
+    labelColors_->SetNumberOfTableValues(3);
+    labelColors_->SetTableRange(-1.0, 1.0);
+    labelColors_->Build();
+    setTableColor(labelColors_, 0, sceneColors::kBackFace);
+    setTableColor(labelColors_, 1, sceneColors::kUndefinedVbo);
+    setTableColor(labelColors_, 2, sceneColors::kFrontFace);
+
+    // Overlays. What must be seen wherever it is goes on a second layer,
+    // which clears the depth buffer and keeps the colours below.
+    renderWindow()->SetNumberOfLayers(2);
+    overlayRenderer_->SetLayer(1);
+    overlayRenderer_->InteractiveOff();
+    overlayRenderer_->SetActiveCamera(ren->GetActiveCamera());
+    renderWindow()->AddRenderer(overlayRenderer_);
+    for (OverlayLayer& layer : overlays_) {
+        layer.mapper->ScalarVisibilityOff();
+        layer.actor->SetMapper(layer.mapper);
+        layer.actor->VisibilityOff();
+        layer.actor->PickableOff();
+    }
+    {
+        OverlayLayer& outlines = overlays_[static_cast<int>(SceneOverlay::InconsistentFaces)];
+        vtkProperty* property = outlines.actor->GetProperty();
+        setColor(property, sceneColors::kInconsistentOutline);
+        property->SetLineWidth(static_cast<float>(sceneColors::kInconsistentOutlineWidth));
+        property->LightingOff();
+        overlayRenderer_->AddActor(outlines.actor);
+    }
+    {
+        // Standard radial 1 and other radial 0 map to table entries 1 and 0.
+        radialColors_->SetNumberOfTableValues(2);
+        radialColors_->SetTableRange(0.0, 1.0);
+        radialColors_->Build();
+        setTableColor(radialColors_, 0, sceneColors::kRadialTint);
+        setTableColor(radialColors_, 1, sceneColors::kStandardRadialTint);
+        OverlayLayer& tint = overlays_[static_cast<int>(SceneOverlay::RadialFaces)];
+        tint.mapper->SetLookupTable(radialColors_);
+        tint.mapper->SetScalarModeToUseCellData();
+        tint.mapper->SetColorModeToMapScalars();
+        tint.mapper->UseLookupTableScalarRangeOn();
+        tint.mapper->ScalarVisibilityOn();
+        // In front of the mesh (pushed back by 2, 4), behind the lines.
+        tint.mapper->SetRelativeCoincidentTopologyPolygonOffsetParameters(0.0, 0.0);
+        vtkProperty* property = tint.actor->GetProperty();
+        property->SetOpacity(sceneColors::kRadialTintOpacity);
+        property->SetAmbient(0.3);
+        property->SetDiffuse(0.7);
+        property->SetSpecular(0.0);
+        ren->AddActor(tint.actor);
+    }
+    {
+        OverlayLayer& edges = overlays_[static_cast<int>(SceneOverlay::RadialEdges)];
+        edges.mapper->SetRelativeCoincidentTopologyLineOffsetParameters(-2.0, -60.0);
+        vtkProperty* property = edges.actor->GetProperty();
+        setColor(property, sceneColors::kRadialEdge);
+        property->SetLineWidth(static_cast<float>(sceneColors::kRadialEdgeWidth));
+        property->LightingOff();
+        ren->AddActor(edges.actor);
+    }
+    {
+        // Round dots pulled in front of the curves they lie on.
+        OverlayLayer& contour = overlays_[static_cast<int>(SceneOverlay::ContourVertices)];
+        contour.mapper->SetRelativeCoincidentTopologyPointOffsetParameter(-120.0);
+        vtkProperty* property = contour.actor->GetProperty();
+        setColor(property, sceneColors::kContourVertex);
+        property->SetPointSize(static_cast<float>(sceneColors::kContourVertexSize));
+        property->RenderPointsAsSpheresOn();
+        property->LightingOff();
+        ren->AddActor(contour.actor);
+    }
+    {
+        // Large squares: a different glyph from the C vertices' dots.
+        OverlayLayer& cusps = overlays_[static_cast<int>(SceneOverlay::Cusps)];
+        vtkProperty* property = cusps.actor->GetProperty();
+        setColor(property, sceneColors::kCuspVertex);
+        property->SetPointSize(static_cast<float>(sceneColors::kCuspVertexSize));
+        property->LightingOff();
+        overlayRenderer_->AddActor(cusps.actor);
+    }
+
     frustumActor_->SetMapper(frustumMapper_);
     setColor(frustumActor_->GetProperty(), sceneColors::kFrustum);
     frustumActor_->GetProperty()->SetLineWidth(1.5f);
@@ -162,7 +243,9 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     ren->AddActor(frustumActor_);
 }
 
-SceneView3D::~SceneView3D() = default;
+SceneView3D::~SceneView3D() {
+    renderWindow()->RemoveRenderer(overlayRenderer_);
+}
 
 void SceneView3D::setSnapshot(const Snapshot& snapshot) {
     if (!snapshot.mesh) {
@@ -197,6 +280,7 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
     else
         meshData_->GetCellData()->RemoveArray(kVtkFacingArray);
     updateColoring();
+    updateOverlays();
 
     if (snapshot.curves != curves_) {
         curves_ = snapshot.curves;
@@ -220,10 +304,15 @@ void SceneView3D::setColorField(const std::string& field) {
 void SceneView3D::updateColoring() {
     const std::string previousField = displayedField_;
     const std::vector<std::string> previousFields = scalarFields_;
+    const std::vector<std::string> previousLabels = labelFields_;
     scalarFields_ = meshData_ ? scalarFieldNames(snapshot_) : std::vector<std::string>{};
-    const bool available =
-        std::find(scalarFields_.begin(), scalarFields_.end(), colorField_) != scalarFields_.end();
-    displayedField_ = available ? colorField_ : std::string(fields::kFacing);
+    labelFields_ = meshData_ ? faceLabelFieldNames(snapshot_) : std::vector<std::string>{};
+    const auto lists = [this](const std::vector<std::string>& names) {
+        return std::find(names.begin(), names.end(), colorField_) != names.end();
+    };
+    showsScalar_ = meshData_ && lists(scalarFields_);
+    showsLabels_ = meshData_ && !showsScalar_ && lists(labelFields_);
+    displayedField_ = showsScalar_ || showsLabels_ ? colorField_ : std::string(fields::kFacing);
 
     const auto removeShownArray = [this] {
         if (meshData_ && !shownArrayName_.empty()) {
@@ -234,7 +323,7 @@ void SceneView3D::updateColoring() {
         shownFieldValues_.reset();
     };
 
-    if (meshData_ && showsScalarField()) {
+    if (showsScalar_) {
         const std::shared_ptr<const Field>& field = snapshot_.fields.at(displayedField_);
         if (field != shownFieldValues_) {
             removeShownArray();
@@ -268,6 +357,22 @@ void SceneView3D::updateColoring() {
         scalarBar_->SetTitle(fieldDisplayName(displayedField_).c_str());
         scalarBar_->SetDrawNanAnnotation(scalarRange_.nanCount > 0);
         scalarBar_->VisibilityOn();
+    } else if (showsLabels_) {
+        const std::shared_ptr<const Field>& field = snapshot_.fields.at(displayedField_);
+        if (field != shownFieldValues_) {
+            removeShownArray();
+            meshData_->GetCellData()->AddArray(faceLabelsToCellArray(snapshot_, displayedField_));
+            shownArrayName_ = displayedField_;
+            shownFieldValues_ = field;
+        }
+        meshMapper_->SetScalarModeToUseCellFieldData();
+        meshMapper_->InterpolateScalarsBeforeMappingOff();
+        meshMapper_->SelectColorArray(displayedField_.c_str());
+        meshMapper_->SetLookupTable(labelColors_);
+        meshMapper_->ScalarVisibilityOn();
+        showsFacing_ = false;
+        curveMapper_->SetLookupTable(curveColors_);
+        scalarBar_->VisibilityOff();
     } else {
         removeShownArray();
         showsFacing_ = meshData_ && meshData_->GetCellData()->GetArray(kVtkFacingArray);
@@ -280,8 +385,75 @@ void SceneView3D::updateColoring() {
     }
     if (meshData_)
         meshData_->Modified();
-    if (displayedField_ != previousField || scalarFields_ != previousFields)
+    if (displayedField_ != previousField || scalarFields_ != previousFields ||
+        labelFields_ != previousLabels)
         emit colorFieldsChanged();
+}
+
+void SceneView3D::updateOverlays() {
+    std::array<bool, kSceneOverlayCount> wasAvailable{};
+    for (int i = 0; i < kSceneOverlayCount; ++i)
+        wasAvailable[i] = static_cast<bool>(overlays_[i].data);
+    std::array<vtkSmartPointer<vtkPolyData>, kSceneOverlayCount> converted{};
+    if (meshData_) {
+        converted[static_cast<int>(SceneOverlay::InconsistentFaces)] =
+            inconsistentFaceOutlines(snapshot_);
+        converted[static_cast<int>(SceneOverlay::RadialFaces)] = radialFacesToPolyData(snapshot_);
+        converted[static_cast<int>(SceneOverlay::ContourVertices)] =
+            markedVerticesToPolyData(snapshot_, fields::kLabel, 0);
+        converted[static_cast<int>(SceneOverlay::Cusps)] =
+            markedVerticesToPolyData(snapshot_, fields::kCusp, 1);
+        converted[static_cast<int>(SceneOverlay::RadialEdges)] =
+            markedEdgesToPolyData(snapshot_, fields::kRadialEdge);
+    }
+    // The tint shares the mesh's points: shade it like the mesh.
+    if (vtkPolyData* tint = converted[static_cast<int>(SceneOverlay::RadialFaces)])
+        tint->GetPointData()->SetNormals(meshData_->GetPointData()->GetNormals());
+    bool changed = false;
+    for (int i = 0; i < kSceneOverlayCount; ++i) {
+        OverlayLayer& layer = overlays_[i];
+        layer.data = converted[i];
+        layer.mapper->SetInputData(layer.data ? layer.data.Get()
+                                              : vtkSmartPointer<vtkPolyData>::New().Get());
+        changed |= wasAvailable[i] != static_cast<bool>(layer.data);
+    }
+    updateOverlayVisibility();
+    if (changed)
+        emit overlaysChanged();
+}
+
+void SceneView3D::updateOverlayVisibility() {
+    for (int i = 0; i < kSceneOverlayCount; ++i)
+        overlays_[i].actor->SetVisibility(isOverlayShown(static_cast<SceneOverlay>(i)));
+}
+
+void SceneView3D::setOverlayEnabled(SceneOverlay overlay, bool enabled) {
+    overlays_[static_cast<int>(overlay)].enabled = enabled;
+    updateOverlayVisibility();
+    requestRender();
+}
+
+bool SceneView3D::isOverlayEnabled(SceneOverlay overlay) const {
+    return overlays_[static_cast<int>(overlay)].enabled;
+}
+
+bool SceneView3D::isOverlayAvailable(SceneOverlay overlay) const {
+    return static_cast<bool>(overlays_[static_cast<int>(overlay)].data);
+}
+
+bool SceneView3D::isOverlayShown(SceneOverlay overlay) const {
+    return isOverlayEnabled(overlay) && isOverlayAvailable(overlay) && meshActor_->GetVisibility();
+}
+
+long long SceneView3D::overlayElementCount(SceneOverlay overlay) const {
+    vtkPolyData* poly = overlays_[static_cast<int>(overlay)].data;
+    if (!poly)
+        return 0;
+    return poly->GetNumberOfVerts() + poly->GetNumberOfLines() + poly->GetNumberOfPolys();
+}
+
+vtkPolyData* SceneView3D::overlayData(SceneOverlay overlay) const {
+    return overlays_[static_cast<int>(overlay)].data;
 }
 
 bool SceneView3D::isScalarBarVisible() const {
@@ -317,6 +489,7 @@ void SceneView3D::clearScene() {
     shownArrayName_.clear();
     shownNormals_.reset();
     updateColoring();
+    updateOverlays();
     curves_.reset();
     curveCount_ = 0;
     showsFacing_ = false;

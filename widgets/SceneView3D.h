@@ -1,10 +1,13 @@
 #pragma once
 // The 3D view of a snapshot: the working mesh coloured by facing
 // (sceneColors::kFrontFace / kBackFace, kUnclassifiedFace before the facing
-// phase) or by a signed scalar field of the snapshot (g, radial, Gaussian or
-// mean curvature: DivergingColorMap.h, with a scalar bar), the curves drawn
-// on top as thick lines, and the analysis camera's frustum when this view's
-// own camera differs from it.
+// phase), by a face label field (the consistent method's VBO: F and B in the
+// facing colours, undefined in kUndefinedVbo) or by a signed scalar field of
+// the snapshot (g, radial, Gaussian or mean curvature: DivergingColorMap.h,
+// with a scalar bar), the curves drawn on top as thick lines, the overlays of
+// the consistent method (SceneOverlay) where the snapshot has their fields,
+// and the analysis camera's frustum when this view's own camera differs from
+// it.
 #include "DivergingColorMap.h"
 #include "SceneColors.h"
 #include "VtkOpenGLWidget.h"
@@ -13,6 +16,7 @@
 #include "pipeline/Snapshot.h"
 
 #include <QRect>
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +31,15 @@
 class vtkPolyData;
 
 namespace contour {
+
+// What the view can draw over the mesh from the consistent method's fields
+// (Bénard 2014), each a toggle: the outlines of inconsistent faces
+// (fields::kConsistent == 0, drawn over everything), translucent tints of
+// radial and standard radial triangles, the contour (C) vertices
+// (fields::kLabel == 0), the cusps (fields::kCusp, larger squares, drawn over
+// everything) and the radial edges (fields::kRadialEdge).
+enum class SceneOverlay { InconsistentFaces, RadialFaces, ContourVertices, Cusps, RadialEdges };
+inline constexpr int kSceneOverlayCount = 5;
 
 class SceneView3D : public VtkOpenGLWidget {
     Q_OBJECT
@@ -46,20 +59,25 @@ public:
     const Snapshot& snapshot() const { return snapshot_; }
     // Whether the faces are currently coloured from a facing field.
     bool showsFacing() const { return showsFacing_; }
+    // Whether they are coloured by a face label field (labelFields()).
+    bool showsFaceLabels() const { return showsLabels_; }
 
-    // What to colour the mesh by: fields::kFacing (front/back) or the name of
-    // a scalar field (scalarFieldNames in SnapshotToVtk.h). The choice is kept
+    // What to colour the mesh by: fields::kFacing (front/back), a face label
+    // field (fields::kVbo, faceLabelFieldNames in SnapshotToVtk.h) or the name
+    // of a scalar field (scalarFieldNames). The choice is kept
     // across snapshots; a snapshot without that field is shown by facing
     // (displayedColorField()), and the field is shown again as soon as a
     // snapshot has it (stepping back to the input and forward again, or a
     // re-run after a parameter change, keeps the choice).
     void setColorField(const std::string& field);
     const std::string& colorField() const { return colorField_; }
-    // fields::kFacing or the scalar field actually shown.
+    // fields::kFacing or the label or scalar field actually shown.
     const std::string& displayedColorField() const { return displayedField_; }
-    // The scalar fields of the current snapshot, in selector order.
+    // The face label fields and the scalar fields of the current snapshot,
+    // in selector order.
+    const std::vector<std::string>& labelFields() const { return labelFields_; }
     const std::vector<std::string>& scalarFields() const { return scalarFields_; }
-    bool showsScalarField() const { return displayedField_ != fields::kFacing; }
+    bool showsScalarField() const { return showsScalar_; }
     // The range of the diverging map of the shown scalar field.
     const SymmetricRange& scalarRange() const { return scalarRange_; }
     bool isScalarBarVisible() const;
@@ -72,6 +90,18 @@ public:
     bool hasSmoothShading() const { return static_cast<bool>(shownNormals_); }
     // Triangles in the VTK data shown for the mesh (0 when none).
     long long displayedFaceCount() const;
+
+    // Overlays: a choice kept across snapshots (all enabled at first); an
+    // overlay is drawn when it is enabled and the snapshot has its fields.
+    void setOverlayEnabled(SceneOverlay overlay, bool enabled);
+    bool isOverlayEnabled(SceneOverlay overlay) const;
+    bool isOverlayAvailable(SceneOverlay overlay) const;
+    bool isOverlayShown(SceneOverlay overlay) const;
+    // Elements in the overlay's VTK data (outlined faces, tinted faces, C
+    // vertices, cusps, radial edges); 0 when it is not available.
+    long long overlayElementCount(SceneOverlay overlay) const;
+    // The overlay's VTK data, or null when it is not available.
+    vtkPolyData* overlayData(SceneOverlay overlay) const;
 
     // The camera the method runs with; drawn as a frustum when it differs
     // from this view's camera.
@@ -95,6 +125,8 @@ public:
 signals:
     // The list of scalar fields or the displayed colouring changed.
     void colorFieldsChanged();
+    // Which overlays the snapshot has fields for changed.
+    void overlaysChanged();
     // The frustum appeared or disappeared (the view left or joined the
     // analysis camera).
     void viewMatchChanged(bool matches);
@@ -106,6 +138,10 @@ private:
     void updateFrustum();
     // Applies colorField_ to the current snapshot's mesh.
     void updateColoring();
+    // Converts the current snapshot's overlay fields and shows the enabled
+    // ones.
+    void updateOverlays();
+    void updateOverlayVisibility();
 
     vtkNew<vtkPolyDataMapper> meshMapper_;
     vtkNew<vtkActor> meshActor_;
@@ -118,12 +154,26 @@ private:
     vtkNew<vtkScalarBarActor> scalarBar_;
     vtkNew<vtkPolyDataMapper> frustumMapper_;
     vtkNew<vtkActor> frustumActor_;
+    vtkNew<vtkLookupTable> labelColors_;
+
+    struct OverlayLayer {
+        vtkNew<vtkPolyDataMapper> mapper;
+        vtkNew<vtkActor> actor;
+        vtkSmartPointer<vtkPolyData> data; // null when not available
+        bool enabled = true;
+    };
+    std::array<OverlayLayer, kSceneOverlayCount> overlays_;
+    vtkNew<vtkLookupTable> radialColors_;
+    // Layer 1 over the scene, sharing its camera: what is drawn over
+    // everything (inconsistent outlines, cusps).
+    vtkNew<vtkRenderer> overlayRenderer_;
 
     std::shared_ptr<const TriangleMesh> mesh_;
     Snapshot snapshot_;
     std::string colorField_ = fields::kFacing;
     std::string displayedField_ = fields::kFacing;
     std::vector<std::string> scalarFields_;
+    std::vector<std::string> labelFields_;
     // The field whose values are in meshData_ (to skip converting it again).
     std::shared_ptr<const Field> shownFieldValues_;
     std::string shownArrayName_;
@@ -134,6 +184,8 @@ private:
     std::shared_ptr<const std::vector<Polyline>> curves_;
     std::optional<Camera> analysisCamera_;
     bool showsFacing_ = false;
+    bool showsLabels_ = false;
+    bool showsScalar_ = false;
     int curveCount_ = 0;
     bool lastMatch_ = true;
 };

@@ -64,17 +64,48 @@ vtkSmartPointer<vtkPolyData> meshToPolyData(const TriangleMesh& mesh) {
     return poly;
 }
 
-vtkSmartPointer<vtkIntArray> facingToCellArray(const Snapshot& snapshot) {
-    const Field* field = snapshot.field(fields::kFacing);
-    if (!field || field->location != FieldLocation::Face || !field->labels() || !snapshot.mesh ||
-        static_cast<Index>(field->labels()->size()) != snapshot.mesh->faceCount())
+namespace {
+
+// The integer field `name` on every vertex, face or edge of the mesh (by
+// `location`), or null.
+const std::vector<int>* meshLabels(const Snapshot& snapshot, const std::string& name,
+                                   FieldLocation location) {
+    const Field* field = snapshot.field(name);
+    if (!field || field->location != location || !field->labels() || !snapshot.mesh)
         return nullptr;
-    const std::vector<int>& labels = *field->labels();
+    const TriangleMesh& mesh = *snapshot.mesh;
+    const Index expected = location == FieldLocation::Vertex ? mesh.vertexCount()
+                           : location == FieldLocation::Face ? mesh.faceCount()
+                                                             : mesh.edgeCount();
+    return static_cast<Index>(field->labels()->size()) == expected ? field->labels() : nullptr;
+}
+
+vtkSmartPointer<vtkIntArray> toIntArray(const std::vector<int>& labels, const char* name) {
     auto array = vtkSmartPointer<vtkIntArray>::New();
-    array->SetName(kVtkFacingArray);
+    array->SetName(name);
     array->SetNumberOfTuples(static_cast<vtkIdType>(labels.size()));
     std::copy(labels.begin(), labels.end(), array->GetPointer(0));
     return array;
+}
+
+} // namespace
+
+vtkSmartPointer<vtkIntArray> facingToCellArray(const Snapshot& snapshot) {
+    const std::vector<int>* labels = meshLabels(snapshot, fields::kFacing, FieldLocation::Face);
+    return labels ? toIntArray(*labels, kVtkFacingArray) : nullptr;
+}
+
+std::vector<std::string> faceLabelFieldNames(const Snapshot& snapshot) {
+    std::vector<std::string> names;
+    if (meshLabels(snapshot, fields::kVbo, FieldLocation::Face))
+        names.emplace_back(fields::kVbo);
+    return names;
+}
+
+vtkSmartPointer<vtkIntArray> faceLabelsToCellArray(const Snapshot& snapshot,
+                                                   const std::string& name) {
+    const std::vector<int>* labels = meshLabels(snapshot, name, FieldLocation::Face);
+    return labels ? toIntArray(*labels, name.c_str()) : nullptr;
 }
 
 namespace {
@@ -170,6 +201,96 @@ vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curve
     poly->SetLines(makeCells(offsets, connectivity));
     poly->GetCellData()->AddArray(types);
     poly->GetCellData()->SetActiveScalars(kVtkCurveTypeArray);
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> inconsistentFaceOutlines(const Snapshot& snapshot) {
+    const std::vector<int>* consistent =
+        meshLabels(snapshot, fields::kConsistent, FieldLocation::Face);
+    if (!consistent)
+        return nullptr;
+    const TriangleMesh& mesh = *snapshot.mesh;
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+        if ((*consistent)[f] != 0)
+            continue;
+        const Triangle& t = mesh.triangle(f);
+        connectivity.insert(connectivity.end(), {t[0], t[1], t[2], t[0]});
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(mesh.positions()));
+    poly->SetLines(makeCells(offsets, connectivity));
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> radialFacesToPolyData(const Snapshot& snapshot) {
+    const std::vector<int>* radial = meshLabels(snapshot, fields::kRadial, FieldLocation::Face);
+    const std::vector<int>* standard =
+        meshLabels(snapshot, fields::kStandardRadial, FieldLocation::Face);
+    if (!radial && !standard)
+        return nullptr;
+    const TriangleMesh& mesh = *snapshot.mesh;
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+    auto kinds = vtkSmartPointer<vtkIntArray>::New();
+    kinds->SetName(kVtkStandardRadialArray);
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+        const bool isStandard = standard && (*standard)[f] != 0;
+        if (!isStandard && !(radial && (*radial)[f] != 0))
+            continue;
+        const Triangle& t = mesh.triangle(f);
+        connectivity.insert(connectivity.end(), {t[0], t[1], t[2]});
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+        kinds->InsertNextValue(isStandard ? 1 : 0);
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(mesh.positions()));
+    poly->SetPolys(makeCells(offsets, connectivity));
+    poly->GetCellData()->SetScalars(kinds);
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> markedVerticesToPolyData(const Snapshot& snapshot,
+                                                      const std::string& field, int value) {
+    const std::vector<int>* labels = meshLabels(snapshot, field, FieldLocation::Vertex);
+    if (!labels)
+        return nullptr;
+    std::vector<Vec3> positions;
+    for (Index v = 0; v < snapshot.mesh->vertexCount(); ++v)
+        if ((*labels)[v] == value)
+            positions.push_back(snapshot.mesh->position(v));
+    std::vector<vtkIdType> offsets(positions.size() + 1);
+    std::vector<vtkIdType> connectivity(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        offsets[i + 1] = static_cast<vtkIdType>(i + 1);
+        connectivity[i] = static_cast<vtkIdType>(i);
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(positions));
+    poly->SetVerts(makeCells(offsets, connectivity));
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> markedEdgesToPolyData(const Snapshot& snapshot,
+                                                   const std::string& field) {
+    const std::vector<int>* labels = meshLabels(snapshot, field, FieldLocation::Edge);
+    if (!labels)
+        return nullptr;
+    const TriangleMesh& mesh = *snapshot.mesh;
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+    for (Index e = 0; e < mesh.edgeCount(); ++e) {
+        if ((*labels)[e] == 0)
+            continue;
+        const Index h = mesh.edgeHalfedge(e);
+        connectivity.insert(connectivity.end(), {mesh.from(h), mesh.to(h)});
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(mesh.positions()));
+    poly->SetLines(makeCells(offsets, connectivity));
     return poly;
 }
 

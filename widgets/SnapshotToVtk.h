@@ -27,6 +27,17 @@ vtkSmartPointer<vtkPolyData> meshToPolyData(const TriangleMesh& mesh);
 // has no facing field yet or it does not match the mesh.
 vtkSmartPointer<vtkIntArray> facingToCellArray(const Snapshot& snapshot);
 
+// The integer face fields besides fields::kFacing that a view can colour
+// faces front/back by (+1 F, -1 B, 0 undefined): the vertex-based orientation
+// fields::kVbo (Bénard 2014, Definition 1), when the snapshot has it on every
+// face.
+std::vector<std::string> faceLabelFieldNames(const Snapshot& snapshot);
+
+// The integer face field `name` as a cell array named `name`, or null when
+// the snapshot has no such field on the mesh's faces.
+vtkSmartPointer<vtkIntArray> faceLabelsToCellArray(const Snapshot& snapshot,
+                                                   const std::string& name);
+
 // The double fields of `snapshot` on the mesh's vertices or faces whose size
 // matches the mesh: the ones a view can colour by. Known fields first (g,
 // radial, Gaussian, mean curvature), then the others by name.
@@ -47,6 +58,33 @@ vtkSmartPointer<vtkDoubleArray> smoothSurfaceNormals(const Snapshot& snapshot);
 // The curves as polylines (a closed curve repeats its first point) with the
 // cell array kVtkCurveTypeArray holding static_cast<int>(CurveType).
 vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curves);
+
+// Overlays of the consistent method (Bénard 2014, contours/consistent/). Each
+// is null when the snapshot lacks the fields it needs or their sizes do not
+// match the mesh, so a view shows an overlay only where it means something.
+
+// The name of the cell array of radialFacesToPolyData: 1 on a standard radial
+// triangle, 0 on another radial one.
+inline constexpr const char* kVtkStandardRadialArray = "standard_radial";
+
+// One closed polyline (4 point ids, the first repeated) per face whose
+// fields::kConsistent is 0, so the line count is the inconsistent face count.
+vtkSmartPointer<vtkPolyData> inconsistentFaceOutlines(const Snapshot& snapshot);
+
+// The triangles with fields::kRadial or fields::kStandardRadial set, with the
+// cell array kVtkStandardRadialArray (all 0 without a standard_radial field).
+vtkSmartPointer<vtkPolyData> radialFacesToPolyData(const Snapshot& snapshot);
+
+// One vertex cell per mesh vertex whose integer vertex field `field` equals
+// `value`: fields::kLabel 0 gives the contour (C) vertices, fields::kCusp 1
+// the cusps.
+vtkSmartPointer<vtkPolyData> markedVerticesToPolyData(const Snapshot& snapshot,
+                                                      const std::string& field, int value);
+
+// One line per mesh edge whose integer edge field `field` is non-zero (e.g.
+// fields::kRadialEdge).
+vtkSmartPointer<vtkPolyData> markedEdgesToPolyData(const Snapshot& snapshot,
+                                                   const std::string& field);
 
 // The camera's viewing frustum as lines: perspective, a pyramid from the eye
 // to the image rectangle at `depth`; orthographic, a box from the eye plane

@@ -207,6 +207,13 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
     app.add_option("--write-camera", o.writeCameraPath, "Write the camera used as JSON.")
         ->type_name("FILE")
         ->group(outputGroup);
+    app.add_option("--ply", o.plyPath,
+                   "Write the working mesh of the last snapshot computed (after --phase N when "
+                   "given) as ASCII PLY, with every int and double vertex and face field of the "
+                   "snapshot as a property of the same name (vector and edge fields are left "
+                   "out).")
+        ->type_name("FILE")
+        ->group(outputGroup);
 
     // One flag per parameter of every registered method (DESIGN.md: the CLI
     // flags are generated from the schema).
@@ -317,7 +324,10 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
 
     // Two outputs with one name would overwrite each other.
     const std::vector<std::pair<std::string, std::string>> outputs{
-        {"--svg", o.svgPath}, {"--json", o.jsonPath}, {"--write-camera", o.writeCameraPath}};
+        {"--svg", o.svgPath},
+        {"--json", o.jsonPath},
+        {"--write-camera", o.writeCameraPath},
+        {"--ply", o.plyPath}};
     for (size_t i = 0; i < outputs.size(); ++i)
         for (size_t j = i + 1; j < outputs.size(); ++j)
             if (!outputs[i].second.empty() && outputs[i].second == outputs[j].second)

@@ -35,7 +35,7 @@ struct BatchOptions {
     CameraOverrides camera;
     bool views26 = false;
     std::optional<int> phases; // stop after this many phases; all when empty
-    std::string svgPath, jsonPath, writeCameraPath;
+    std::string svgPath, jsonPath, writeCameraPath, plyPath;
 };
 
 enum class ParseStatus { Run, Exit };

@@ -1,15 +1,18 @@
 #include "BatchRun.h"
 
 #include "Summary.h"
-#include "io/AtomicFile.h"
 #include "export/JsonReport.h"
+#include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
+#include "io/AtomicFile.h"
 #include "mesh/MeshError.h"
 #include "mesh/MeshReader.h"
+#include "mesh/MeshWriter.h"
 #include "pipeline/Runner.h"
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <vector>
@@ -96,7 +99,7 @@ std::vector<Camera> placeCameras(const BatchOptions& o, const BoundingBox& box,
 
 // Fails before any work when an output's folder does not exist.
 void checkOutputFolders(const BatchOptions& o) {
-    for (const std::string& path : {o.svgPath, o.jsonPath, o.writeCameraPath}) {
+    for (const std::string& path : {o.svgPath, o.jsonPath, o.writeCameraPath, o.plyPath}) {
         if (path.empty())
             continue;
         std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -109,16 +112,22 @@ void checkOutputFolders(const BatchOptions& o) {
     }
 }
 
+// An output to write once every view has run: its text, or (for meshes,
+// whose writer builds the text itself) a function that writes it atomically.
 struct PendingFile {
     std::string path;
     std::string content;
+    std::function<void(const std::string&)> write;
 };
 
 } // namespace
 
 std::string viewOutputPath(const std::string& path, int view) {
     const std::filesystem::path p(path);
-    const std::string number = (view < 10 ? "0" : "") + std::to_string(view);
+    // Two digits; built without `"0" + string`, which GCC 12 flags (-Wrestrict).
+    std::string number = std::to_string(view);
+    if (view < 10)
+        number.insert(0, 1, '0');
     std::filesystem::path name = p.stem();
     name += "_view" + number;
     name += p.extension();
@@ -176,18 +185,38 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
                                   runner->current().phaseName;
         if (!o.svgPath.empty())
             files.push_back({several ? viewOutputPath(o.svgPath, view) : o.svgPath,
-                             svgDocument(runner->current(), camera, {title, 1.5, true})});
+                             svgDocument(runner->current(), camera, {title, 1.5, true}),
+                             {}});
         if (!o.writeCameraPath.empty())
             files.push_back({several ? viewOutputPath(o.writeCameraPath, view) : o.writeCameraPath,
-                             camera.toJson().dump(2) + "\n"});
+                             camera.toJson().dump(2) + "\n",
+                             {}});
+        if (!o.plyPath.empty()) {
+            const Snapshot& last = runner->current();
+            if (!last.mesh)
+                throw BatchFailure(o.plyPath + ": the snapshot after " + last.phaseName +
+                                   " has no mesh to write");
+            auto labels = std::make_shared<const SnapshotPlyLabels>(snapshotPlyLabels(last));
+            if (v == 0) // the same fields in every view
+                for (const std::string& skipped : labels->skipped)
+                    out << "  --ply leaves out field " << skipped << "\n";
+            files.push_back({several ? viewOutputPath(o.plyPath, view) : o.plyPath,
+                             {},
+                             [mesh = last.mesh, labels](const std::string& path) {
+                                 writePly(*mesh, path, labels->labels);
+                             }});
+        }
     }
     if (!o.jsonPath.empty())
-        files.push_back({o.jsonPath, report.text()});
+        files.push_back({o.jsonPath, report.text(), {}});
 
     std::vector<std::string> written;
     try {
         for (const PendingFile& file : files) {
-            writeFileAtomically(file.path, file.content);
+            if (file.write)
+                file.write(file.path);
+            else
+                writeFileAtomically(file.path, file.content);
             written.push_back(file.path);
         }
     } catch (const std::exception& e) {

@@ -4,6 +4,7 @@
 #include "ImageView2D.h"
 #include "MethodPanel.h"
 #include "PhaseStepper.h"
+#include "SceneColors.h"
 #include "SceneView3D.h"
 #include "contours/Methods.h"
 #include "mesh/MeshError.h"
@@ -24,12 +25,15 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QPainter>
+#include <QPixmap>
 #include <QProgressBar>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTimer>
 #include <QToolBar>
-#include <QVBoxLayout>
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
 
@@ -40,6 +44,70 @@ namespace {
 // The "3/4 view" the analysis camera starts from: right, above, in front.
 const Vec3 kInitialViewDirection(0.55, 0.45, 1.0);
 const Viewport kFallbackViewport{800, 600};
+
+// A legend entry: a square of `color` and its meaning, as rich text.
+QString swatch(const SceneColor& color, const QString& text) {
+    return QStringLiteral("<span style=\"color:%1\">&#9632;</span>&nbsp;%2")
+        .arg(color.toQColor().name(), text.toHtmlEscaped());
+}
+
+// The overlays' names, tool tips and icons (what they look like in the view).
+struct OverlayInfo {
+    SceneOverlay overlay;
+    const char* name;
+    const char* toolTip;
+};
+
+const std::array<OverlayInfo, kSceneOverlayCount> kOverlays{{
+    {SceneOverlay::InconsistentFaces, "Inconsistent faces",
+     "Outline, drawn over everything, the faces whose VBO disagrees with their facing "
+     "(contour-inconsistent, Bénard 2014 Definition 2)"},
+    {SceneOverlay::RadialFaces, "Radial faces",
+     "Tint radial triangles (Definition 5) orange, standard radial triangles (§6.3) teal"},
+    {SceneOverlay::ContourVertices, "C vertices",
+     "Mark the contour vertices (label C, g = 0 at their preimage, §6.2) with white dots"},
+    {SceneOverlay::Cusps, "Cusps",
+     "Mark the cusp vertices (g = 0 and radial curvature 0, §6.2 d) with large cyan squares, "
+     "drawn over everything"},
+    {SceneOverlay::RadialEdges, "Radial edges",
+     "Draw the radial edges p-r (Definition 5, §6.3) in charcoal"},
+}};
+
+QIcon overlayIcon(SceneOverlay overlay) {
+    QPixmap pixmap(16, 16);
+    pixmap.fill(Qt::transparent);
+    QPainter p(&pixmap);
+    p.setRenderHint(QPainter::Antialiasing);
+    const QPolygonF triangle({QPointF(2, 14), QPointF(14, 14), QPointF(8, 2)});
+    switch (overlay) {
+    case SceneOverlay::InconsistentFaces:
+        p.setPen(QPen(sceneColors::kInconsistentOutline.toQColor(), 2.0));
+        p.drawPolygon(triangle);
+        break;
+    case SceneOverlay::RadialFaces:
+        p.setPen(Qt::NoPen);
+        p.setBrush(sceneColors::kRadialTint.toQColor());
+        p.drawPolygon(QPolygonF({QPointF(2, 14), QPointF(8, 14), QPointF(8, 2)}));
+        p.setBrush(sceneColors::kStandardRadialTint.toQColor());
+        p.drawPolygon(QPolygonF({QPointF(8, 14), QPointF(14, 14), QPointF(8, 2)}));
+        break;
+    case SceneOverlay::ContourVertices:
+        p.setPen(QPen(QColor(60, 60, 60), 1.0));
+        p.setBrush(sceneColors::kContourVertex.toQColor());
+        p.drawEllipse(QPointF(8, 8), 4.5, 4.5);
+        break;
+    case SceneOverlay::Cusps:
+        p.setPen(Qt::NoPen);
+        p.setBrush(sceneColors::kCuspVertex.toQColor());
+        p.drawRect(QRectF(2, 2, 12, 12));
+        break;
+    case SceneOverlay::RadialEdges:
+        p.setPen(QPen(sceneColors::kRadialEdge.toQColor(), 2.5));
+        p.drawLine(QPointF(2, 14), QPointF(14, 2));
+        break;
+    }
+    return QIcon(pixmap);
+}
 
 } // namespace
 
@@ -59,12 +127,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(stepper_, &PhaseStepper::runToEndRequested, this, &MainWindow::runToEnd);
     connect(sceneView_, &SceneView3D::viewMatchChanged, this, &MainWindow::updateActions);
     connect(sceneView_, &SceneView3D::colorFieldsChanged, this, &MainWindow::updateColorSelector);
+    connect(sceneView_, &SceneView3D::overlaysChanged, this, &MainWindow::updateOverlayActions);
     // currentIndexChanged for programmatic changes, activated for the user
     // picking the entry already shown (e.g. facing while a remembered field
     // is missing), so that it becomes the choice.
     connect(colorSelector_, &QComboBox::currentIndexChanged, this, &MainWindow::onColorSelected);
     connect(colorSelector_, &QComboBox::activated, this, &MainWindow::onColorSelected);
     updateColorSelector();
+    updateOverlayActions();
     stepper_->setMethod(methodPanel_->method());
     updateActions();
     updateStatus();
@@ -78,9 +148,10 @@ MainWindow::~MainWindow() {
 void MainWindow::createLayout() {
     sceneView_ = new SceneView3D(this);
     sceneView_->setToolTip(tr("3D view: drag to orbit (left), pan (middle, shift+left), zoom "
-                              "(right, wheel). Faces: yellow front, blue back; curves red. "
-                              "Coloured by a scalar field: blue negative, red positive, grey "
-                              "NaN; curves black."));
+                              "(right, wheel). Faces: yellow front, blue back (by VBO: green "
+                              "undefined); curves red. Coloured by a scalar field: blue "
+                              "negative, red positive, grey NaN; curves black. Overlays: see "
+                              "the Overlays tool bar."));
     imageView_ = new ImageView2D(this);
     splitter_ = new QSplitter(Qt::Horizontal, this);
     splitter_->addWidget(sceneView_);
@@ -92,10 +163,26 @@ void MainWindow::createLayout() {
 
     methodPanel_ = new MethodPanel;
     stepper_ = new PhaseStepper;
-    auto* panel = new QWidget;
-    auto* layout = new QVBoxLayout(panel);
-    layout->addWidget(methodPanel_);
-    layout->addWidget(stepper_, 1);
+    // A method with many parameters (the consistent one has ~25) scrolls its
+    // form instead of squeezing the phase list.
+    auto* form = new QScrollArea;
+    form->setWidget(methodPanel_);
+    form->setWidgetResizable(true);
+    form->setFrameShape(QFrame::NoFrame);
+    form->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    // As wide as the form needs next to the vertical scroll bar.
+    const auto fitForm = [this, form] {
+        form->setMinimumWidth(methodPanel_->minimumSizeHint().width() +
+                              form->verticalScrollBar()->sizeHint().width());
+    };
+    fitForm();
+    connect(methodPanel_, &MethodPanel::methodChanged, form, fitForm);
+    auto* panel = new QSplitter(Qt::Vertical);
+    panel->addWidget(form);
+    panel->addWidget(stepper_);
+    panel->setStretchFactor(0, 1);
+    panel->setStretchFactor(1, 1);
+    panel->setChildrenCollapsible(false);
     auto* dock = new QDockWidget(tr("Method"), this);
     dock->setObjectName(QStringLiteral("methodDock"));
     dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
@@ -167,12 +254,66 @@ void MainWindow::createActions() {
     colorSelector_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
     colorSelector_->setMinimumContentsLength(22);
     colorSelector_->setToolTip(
-        tr("What the 3D view colours the surface by: front/back faces, or a signed scalar field "
+        tr("What the 3D view colours the surface by: front/back faces (by facing, or by the "
+           "consistent method's vertex-based orientation, VBO), or a signed scalar field "
            "of the current phase on a symmetric blue-white-red map centred on 0 (range ±m, m = "
            "98th percentile of |value|; NaN grey)"));
     colorLabel->setBuddy(colorSelector_);
     display->addWidget(colorLabel);
     display->addWidget(colorSelector_);
+    colorLegend_ = new QLabel(display);
+    colorLegend_->setObjectName(QStringLiteral("colorLegend"));
+    colorLegend_->setTextFormat(Qt::RichText);
+    colorLegend_->setContentsMargins(8, 0, 8, 0);
+    display->addWidget(colorLegend_);
+
+    createOverlayActions(view);
+}
+
+void MainWindow::createOverlayActions(QMenu* viewMenu) {
+    addToolBarBreak();
+    overlayBar_ = addToolBar(tr("Overlays"));
+    overlayBar_->setObjectName(QStringLiteral("overlayToolBar"));
+    overlayBar_->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
+    QMenu* menu = viewMenu->addMenu(tr("&Overlays"));
+    for (const OverlayInfo& info : kOverlays) {
+        auto* action = new QAction(overlayIcon(info.overlay), tr(info.name), this);
+        action->setCheckable(true);
+        action->setChecked(sceneView_->isOverlayEnabled(info.overlay));
+        action->setToolTip(tr(info.toolTip));
+        action->setStatusTip(tr(info.toolTip));
+        const SceneOverlay overlay = info.overlay;
+        connect(action, &QAction::toggled, this,
+                [this, overlay](bool on) { sceneView_->setOverlayEnabled(overlay, on); });
+        overlayActions_[static_cast<int>(overlay)] = action;
+        overlayBar_->addAction(action);
+        menu->addAction(action);
+    }
+}
+
+void MainWindow::updateOverlayActions() {
+    bool any = false;
+    for (int i = 0; i < kSceneOverlayCount; ++i) {
+        const bool available = sceneView_->isOverlayAvailable(static_cast<SceneOverlay>(i));
+        overlayActions_[i]->setVisible(available);
+        any |= available;
+    }
+    // The bar only takes room when it has something to offer.
+    overlayBar_->setVisible(any);
+}
+
+void MainWindow::updateColorLegend() {
+    const std::string& field = sceneView_->displayedColorField();
+    QStringList entries;
+    if (field == fields::kVbo) {
+        entries << swatch(sceneColors::kFrontFace, tr("F"))
+                << swatch(sceneColors::kBackFace, tr("B"))
+                << swatch(sceneColors::kUndefinedVbo, tr("undefined"));
+    } else if (field == fields::kFacing && sceneView_->showsFacing()) {
+        entries << swatch(sceneColors::kFrontFace, tr("front"))
+                << swatch(sceneColors::kBackFace, tr("back"));
+    }
+    colorLegend_->setText(entries.join(QStringLiteral("&nbsp;&nbsp;")));
 }
 
 void MainWindow::openFileDialog() {
@@ -472,6 +613,7 @@ void MainWindow::showRunnerState() {
             imageView_->clearScene();
         }
         stepper_->setSnapshots({});
+        updateColorLegend();
         return;
     }
     const Snapshot& snapshot = runner_->current();
@@ -479,6 +621,8 @@ void MainWindow::showRunnerState() {
     sceneView_->setSnapshot(snapshot);
     imageView_->setScene(snapshot, runner_->camera());
     stepper_->setSnapshots(runner_->snapshots());
+    // Facing appears with its phase without the selector's list changing.
+    updateColorLegend();
 }
 
 bool MainWindow::setColorField(const QString& field) {
@@ -493,6 +637,8 @@ QString MainWindow::colorField() const {
 void MainWindow::updateColorSelector() {
     updatingColorSelector_ = true;
     std::vector<std::string> names{fields::kFacing};
+    const std::vector<std::string>& labels = sceneView_->labelFields();
+    names.insert(names.end(), labels.begin(), labels.end());
     const std::vector<std::string>& scalars = sceneView_->scalarFields();
     names.insert(names.end(), scalars.begin(), scalars.end());
     const Snapshot& snapshot = sceneView_->snapshot();
@@ -509,6 +655,7 @@ void MainWindow::updateColorSelector() {
     colorSelector_->setCurrentIndex(std::max(
         0, colorSelector_->findData(QString::fromStdString(sceneView_->displayedColorField()))));
     updatingColorSelector_ = false;
+    updateColorLegend();
 }
 
 void MainWindow::onColorSelected(int index) {

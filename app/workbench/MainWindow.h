@@ -5,8 +5,11 @@
 //
 // Layout: the 3D scene view and the 2D image view side by side in a
 // splitter, a dock with the method panel and the phase stepper on the left,
-// a "Display" tool bar with the 3D view's "Colour by" selector, a status bar. The small public API
+// a "Display" tool bar with the 3D view's "Colour by" selector and its
+// legend, an "Overlays" tool bar with the 3D view's overlay toggles (shown
+// only for the overlays the snapshot has fields for), a status bar. The small public API
 // below is what the menus call, and what tests drive.
+#include "SceneView3D.h"
 #include "camera/Camera.h"
 #include "mesh/PolygonMesh.h"
 #include "pipeline/Runner.h"
@@ -15,6 +18,7 @@
 #include <QFutureWatcher>
 #include <QMainWindow>
 #include <QString>
+#include <array>
 #include <atomic>
 #include <functional>
 #include <memory>
@@ -23,7 +27,9 @@
 class QAction;
 class QComboBox;
 class QLabel;
+class QMenu;
 class QProgressBar;
+class QToolBar;
 class QSplitter;
 
 namespace contour {
@@ -31,7 +37,6 @@ namespace contour {
 class ImageView2D;
 class MethodPanel;
 class PhaseStepper;
-class SceneView3D;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -89,6 +94,14 @@ public:
     QString colorField() const;
     // Its selector: item data is the field name, text the readable name.
     QComboBox* colorSelector() const { return colorSelector_; }
+    // The legend of the shown face colours (empty under a scalar field,
+    // which has its scalar bar).
+    QLabel* colorLegend() const { return colorLegend_; }
+    // The checkable action toggling an overlay of the 3D view; visible only
+    // while the snapshot has the overlay's fields.
+    QAction* overlayAction(SceneOverlay overlay) const {
+        return overlayActions_[static_cast<int>(overlay)];
+    }
 
     SceneView3D* sceneView() const { return sceneView_; }
     ImageView2D* imageView() const { return imageView_; }
@@ -136,6 +149,10 @@ private:
     // selects the one it shows.
     void updateColorSelector();
     void onColorSelected(int index);
+    void createOverlayActions(QMenu* viewMenu);
+    // Shows the actions of the overlays the 3D view can draw.
+    void updateOverlayActions();
+    void updateColorLegend();
 
     SceneView3D* sceneView_ = nullptr;
     ImageView2D* imageView_ = nullptr;
@@ -146,6 +163,9 @@ private:
     QLabel* phaseLabel_ = nullptr;
     QProgressBar* busyBar_ = nullptr;
     QComboBox* colorSelector_ = nullptr;
+    QLabel* colorLegend_ = nullptr;
+    QToolBar* overlayBar_ = nullptr;
+    std::array<QAction*, kSceneOverlayCount> overlayActions_{};
     bool updatingColorSelector_ = false;
 
     QAction* openAction_ = nullptr;

@@ -15,10 +15,7 @@ namespace consistent {
 
 // What is not implemented yet, shown in every snapshot's notes and in the
 // method's description; empty once every sub-phase of §6 exists.
-constexpr const char* kMissing =
-    "cusp detection and insertion (§6.2 d, f), radial edge insertion (§6.3 g), edge flipping "
-    "towards standard radial triangles (§6.3 h), radial edge extension, optimization flips, "
-    "vertex wiggling in parameter space, edge splitting and the normal wiggle (§6.4)";
+constexpr const char* kMissing = "";
 
 void addStatusNote(Snapshot& s) {
     if (*kMissing)
@@ -74,7 +71,15 @@ Method makeConsistentContourMethod() {
          {}},
     };
     addInitializationPhase(m);
+    addCuspDetectionPhase(m);
     addContourInsertionPhase(m);
+    addRadialEdgeInsertionPhase(m);
+    addRadialFlipPhase(m);
+    addRadialExtensionPhase(m);
+    addOptimizationFlipPhase(m);
+    addParameterWigglePhase(m);
+    addEdgeSplitPhase(m);
+    addNormalWigglePhase(m);
     addChainingPhase(m);
     return m;
 }

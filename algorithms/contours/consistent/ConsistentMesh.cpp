@@ -274,6 +274,19 @@ Index ConsistentMesh::splitEdge(Index a, Index b, MeshVertex v, int phase) {
     return m;
 }
 
+Index ConsistentMesh::splitFace(Index f, MeshVertex v, int phase) {
+    v.phase = phase;
+    const Triangle t = faces_[f];
+    const Index m = addVertex(v);
+    detachFace(f);
+    faces_[f] = {t[0], t[1], m};
+    facePhase_[f] = phase;
+    attachFace(f);
+    addFace({t[1], t[2], m}, phase);
+    addFace({t[2], t[0], m}, phase);
+    return m;
+}
+
 void ConsistentMesh::setVertex(Index v, const MeshVertex& x, int phase) {
     vertices_[v] = x;
     if (phase >= 0) {

@@ -104,6 +104,11 @@ public:
     // inserted on edge a-b, and both faces on it are split in two. Returns the
     // new vertex.
     Index splitEdge(Index a, Index b, MeshVertex v, int phase);
+    // Face split 1 -> 3 (§6.3, Fig. 16d: radial edge insertion): a vertex
+    // `v` (already evaluated) is inserted inside face f = a-b-c, which
+    // becomes a-b-v (slot f), b-c-v and c-a-v. Returns the new vertex. Fold
+    // checks are the caller's (FoldTest.h).
+    Index splitFace(Index f, MeshVertex v, int phase);
     // Vertex shift (§6): new preimage, f and n recomputed; the faces around
     // it are marked as changed by `phase`.
     void shiftVertex(Index v, const Preimage& p, VertexLabel label, int phase);

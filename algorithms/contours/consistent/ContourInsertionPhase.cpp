@@ -9,80 +9,97 @@ namespace contour::consistent {
 
 namespace {
 
+bool touchesCuspEdge(const ConsistentMesh& m, Index v) {
+    for (Index w : m.neighbours(v))
+        if (m.edgeTag(v, w) & kCuspEdge)
+            return true;
+    return false;
+}
+
 // §6.2 (e), notes §2.2: bisection of g along every FB edge, snap to a
 // shiftable endpoint within `snap-fraction` of the edge length, otherwise
 // insert a C vertex splitting both faces (Fig. 16c); repeat until no FB edge
-// remains. Cusp edges are not treated separately: cusp detection (§6.2 d)
-// is not implemented.
+// remains. §6.2 (f), Fig. 18c-d: the FB edges tagged by cusp detection are
+// saved for last and always split, never snapped, so the cusp vertex gets
+// valence 4; endpoints of cusp edges are never snapped either (the cusp
+// edge would lose its sign change).
 void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     const double tol = ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
     const int maxIterations = ctx.parameters.getInt("root-max-iterations");
     const double snap = ctx.parameters.getDouble("snap-fraction");
-    long long inserted = 0, snapped = 0, cancelled = 0, unconverged = 0;
-    for (bool progress = true; progress;) {
-        progress = false;
-        for (const auto& [e0, e1] : m.edges()) {
-            ctx.checkCancelled();
-            if (static_cast<int>(m.vertex(e0).label) * static_cast<int>(m.vertex(e1).label) >= 0 ||
-                (m.faceOfHalfedge(e0, e1) == kInvalidIndex &&
-                 m.faceOfHalfedge(e1, e0) == kInvalidIndex))
-                continue;
-            // x is the F end, y the B end: g(x) > 0 > g(y) along the edge.
-            const Index x = m.vertex(e0).label == VertexLabel::Front ? e0 : e1;
-            const Index y = x == e0 ? e1 : e0;
-            const Preimage px = m.vertex(x).preimage, py = m.vertex(y).preimage;
-            double lo = 0.0, hi = 1.0;
-            std::optional<MeshVertex> root;
-            bool failed = false, converged = false;
-            for (int it = 0; it < maxIterations; ++it) {
-                const double mid = 0.5 * (lo + hi);
-                const std::optional<Preimage> p = m.interpolate(px, py, mid);
-                if (!p) {
-                    failed = true;
-                    break;
+    long long inserted = 0, snapped = 0, cancelled = 0, unconverged = 0, cusps = 0;
+    for (const bool cuspStage : {false, true})
+        for (bool progress = true; progress;) {
+            progress = false;
+            for (const auto& [e0, e1] : m.edges()) {
+                ctx.checkCancelled();
+                if (static_cast<int>(m.vertex(e0).label) * static_cast<int>(m.vertex(e1).label) >=
+                        0 ||
+                    (m.faceOfHalfedge(e0, e1) == kInvalidIndex &&
+                     m.faceOfHalfedge(e1, e0) == kInvalidIndex))
+                    continue;
+                const bool cuspEdge = (m.edgeTag(e0, e1) & kCuspEdge) != 0;
+                if (cuspEdge != cuspStage)
+                    continue;
+                // x is the F end, y the B end: g(x) > 0 > g(y) along the edge.
+                const Index x = m.vertex(e0).label == VertexLabel::Front ? e0 : e1;
+                const Index y = x == e0 ? e1 : e0;
+                const Preimage px = m.vertex(x).preimage, py = m.vertex(y).preimage;
+                double lo = 0.0, hi = 1.0;
+                std::optional<MeshVertex> root;
+                bool failed = false, converged = false;
+                for (int it = 0; it < maxIterations; ++it) {
+                    const double mid = 0.5 * (lo + hi);
+                    const std::optional<Preimage> p = m.interpolate(px, py, mid);
+                    if (!p) {
+                        failed = true;
+                        break;
+                    }
+                    MeshVertex v = m.evaluate(*p);
+                    if (!root || std::abs(v.g) < std::abs(root->g))
+                        root = v;
+                    if (std::abs(v.g) <= tol) {
+                        converged = true;
+                        break;
+                    }
+                    (v.g > 0.0 ? lo : hi) = mid;
                 }
-                MeshVertex v = m.evaluate(*p);
-                if (!root || std::abs(v.g) < std::abs(root->g))
-                    root = v;
-                if (std::abs(v.g) <= tol) {
-                    converged = true;
-                    break;
+                if (failed || !root) {
+                    ++cancelled; // appendix B: no common chart, insertion cancelled
+                    continue;
                 }
-                (v.g > 0.0 ? lo : hi) = mid;
-            }
-            if (failed || !root) {
-                ++cancelled; // appendix B: no common chart, insertion cancelled
-                continue;
-            }
-            unconverged += !converged;
-            progress = true;
-            root->label = VertexLabel::Contour;
-            root->provenance = Provenance::Inserted;
-            // Snap rule: shift an endpoint onto the root when it is within
-            // snap-fraction of the edge length and shiftable (appendix C).
-            const double length = (m.vertex(x).position - m.vertex(y).position).norm();
-            const double dx = (root->position - m.vertex(x).position).norm();
-            const double dy = (root->position - m.vertex(y).position).norm();
-            bool done = false;
-            for (Index w : dx <= dy ? std::array{x, y} : std::array{y, x}) {
-                const double d = w == x ? dx : dy;
-                if (d < snap * length && shiftable(m, w, root->preimage, VertexLabel::Contour)) {
-                    m.shiftVertex(w, root->preimage, VertexLabel::Contour, phase);
-                    ++snapped;
-                    done = true;
-                    break;
+                unconverged += !converged;
+                progress = true;
+                root->label = VertexLabel::Contour;
+                root->provenance = Provenance::Inserted;
+                // Snap rule: shift an endpoint onto the root when it is within
+                // snap-fraction of the edge length and shiftable (appendix C).
+                const double length = (m.vertex(x).position - m.vertex(y).position).norm();
+                const double dx = (root->position - m.vertex(x).position).norm();
+                const double dy = (root->position - m.vertex(y).position).norm();
+                bool done = false;
+                for (Index w : dx <= dy ? std::array{x, y} : std::array{y, x}) {
+                    const double d = w == x ? dx : dy;
+                    if (!cuspEdge && d < snap * length && !touchesCuspEdge(m, w) &&
+                        shiftable(m, w, root->preimage, VertexLabel::Contour)) {
+                        m.shiftVertex(w, root->preimage, VertexLabel::Contour, phase);
+                        ++snapped;
+                        done = true;
+                        break;
+                    }
                 }
-            }
-            if (!done) {
-                m.splitEdge(x, y, *root, phase);
-                ++inserted;
+                if (!done) {
+                    root->cusp = cuspEdge;
+                    m.splitEdge(x, y, *root, phase);
+                    ++(cuspEdge ? cusps : inserted);
+                }
             }
         }
-    }
     publish(s, m);
     s.setCounter("inserted contour vertices", static_cast<double>(inserted));
+    s.setCounter("inserted cusp vertices", static_cast<double>(cusps));
     s.setCounter("snapped vertices", static_cast<double>(snapped));
     s.setCounter("cancelled insertions", static_cast<double>(cancelled));
     s.setCounter("unconverged roots", static_cast<double>(unconverged));
@@ -144,7 +161,8 @@ void addContourInsertionPhase(Method& m) {
         {"contour-insertion",
          "§6.2 e (Fig. 15d-f): bisection root of g on every FB edge; shift a shiftable endpoint "
          "within snap-fraction of the edge length onto it (appendix C), otherwise insert a C "
-         "vertex splitting both faces; until no FB edge remains.",
+         "vertex splitting both faces; until no FB edge remains. §6.2 f (Fig. 18c-d): the cusp "
+         "edges come last and are always split, giving each cusp a C vertex of valence 4.",
          runContourInsertion, checkContourInsertion});
 }
 

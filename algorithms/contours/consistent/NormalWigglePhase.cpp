@@ -1,0 +1,193 @@
+// Vertex wiggling in the normal direction (Bénard 2014 §6.4, final step;
+// notes §2.4.5): vertices may leave the limit surface.
+#include "contours/consistent/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/LocalEdit.h"
+#include "contours/consistent/OptimizationPhaseSupport.h"
+
+#include <cmath>
+
+namespace contour::consistent {
+
+namespace {
+
+Vec3 onSurface(const MeshVertex& x) {
+    return x.position - x.normalOffset * x.normal;
+}
+
+// The largest offset allowed at v: `fraction` times the mean distance from
+// f(u_v) to the one-ring's f(u_w) (the paper's "average distance to the
+// vertices in the one-ring", taken on the surface so that it does not depend
+// on the order in which neighbours were wiggled).
+double offsetBound(const ConsistentMesh& m, Index v, double fraction) {
+    const std::vector<Index> ring = m.neighbours(v);
+    if (ring.empty())
+        return 0.0;
+    double sum = 0.0;
+    for (Index w : ring)
+        sum += (onSurface(m.vertex(w)) - onSurface(m.vertex(v))).norm();
+    return fraction * sum / static_cast<double>(ring.size());
+}
+
+struct NormalStats {
+    long long rejectedFold = 0;
+};
+
+// Position f(u) + α n(u) for `samples` offsets α spread evenly over
+// [-bound, bound] (pairs ±α in increasing |α|, plus α = 0 when the vertex is
+// already off the surface); the first offset, in that order, reaching the
+// fewest inconsistent faces around v wins, so ties take the smallest |α|.
+// Labels (g at the preimage) do not change, so VBOs, degenerate edges and
+// parameter space are untouched; a face of the star may not turn over in 3D.
+bool wiggleAlongNormal(ConsistentMesh& m, Index v, int samples, double fraction, int phase,
+                       NormalStats& st) {
+    const MeshVertex current = m.vertex(v);
+    const std::vector<Index> star = m.vertexFaces(v);
+    LocalEdit edit(m);
+    edit.addFaces(star);
+    const LocalScore now = edit.score();
+    if (now.inconsistent == 0)
+        return false;
+    std::vector<char> turned(star.size());
+    for (size_t i = 0; i < star.size(); ++i)
+        turned[i] = edit.turnedOver(edit.faces()[i]);
+    const double bound = offsetBound(m, v, fraction);
+    const Vec3 base = onSurface(current);
+    const int pairs = (samples + 1) / 2;
+    std::vector<double> offsets;
+    if (current.normalOffset != 0.0)
+        offsets.push_back(0.0);
+    for (int k = 1; k <= pairs; ++k)
+        for (double sign : {1.0, -1.0})
+            if (static_cast<int>(offsets.size()) < samples + (current.normalOffset != 0.0))
+                offsets.push_back(sign * bound * k / pairs);
+    std::optional<MeshVertex> best;
+    int bestCount = now.inconsistent;
+    for (double alpha : offsets) {
+        if (alpha == current.normalOffset)
+            continue;
+        MeshVertex x = current;
+        x.normalOffset = alpha;
+        x.position = base + alpha * current.normal;
+        x.provenance = Provenance::Wiggled;
+        x.phase = phase;
+        edit.moveVertex(v, x);
+        const int count = edit.inconsistent();
+        if (count >= bestCount)
+            continue;
+        bool ok = true;
+        for (size_t i = 0; ok && i < star.size(); ++i)
+            ok = turned[i] || !edit.turnedOver(edit.faces()[i]);
+        if (!ok) {
+            ++st.rejectedFold;
+            continue;
+        }
+        best = x;
+        bestCount = count;
+    }
+    if (!best)
+        return false;
+    m.setVertex(v, *best, phase);
+    return true;
+}
+
+void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
+    ConsistentMesh m = reload(ctx, s);
+    const int phase = s.phaseIndex;
+    const int samples = ctx.parameters.getInt("normal-wiggle-samples");
+    const double fraction = ctx.parameters.getDouble("normal-wiggle-max-offset");
+    const int maxSweeps = ctx.parameters.getInt("normal-wiggle-max-sweeps");
+    OptimizationTally tally;
+    NormalStats st;
+    std::vector<Index> faces = inconsistentFaces(m);
+    tally.before = static_cast<long long>(faces.size());
+    for (; tally.sweeps < maxSweeps && !faces.empty();) {
+        ++tally.sweeps;
+        long long accepted = 0;
+        for (Index v : verticesOf(m, faces)) {
+            ctx.checkCancelled();
+            ++tally.tried;
+            accepted += wiggleAlongNormal(m, v, samples, fraction, phase, st);
+        }
+        tally.accepted += accepted;
+        if (accepted == 0)
+            break;
+        faces = inconsistentFaces(m);
+        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
+    }
+    double largest = 0.0;
+    long long offVertices = 0;
+    for (Index v = 0; v < m.vertexCount(); ++v) {
+        const double bound = offsetBound(m, v, 1.0);
+        offVertices += m.vertex(v).normalOffset != 0.0;
+        if (bound > 0.0)
+            largest = std::max(largest, std::abs(m.vertex(v).normalOffset) / bound);
+    }
+    publish(s, m);
+    publishTally(s, tally, "vertices", "normal-wiggle-max-sweeps");
+    s.setCounter("vertices off the surface", static_cast<double>(offVertices));
+    s.setCounter("largest offset / mean one-ring distance", largest);
+    s.setCounter("offsets rejected (3D fold)", static_cast<double>(st.rejectedFold));
+}
+
+// Notes §6.1 item 2: |α| <= the mean one-ring distance (times
+// normal-wiggle-max-offset).
+std::vector<InvariantCheck> checkNormalWiggle(const PhaseContext& ctx, const Snapshot& s) {
+    std::vector<InvariantCheck> out = optimizationChecks(ctx, s, false);
+    const ConsistentMesh m = reload(ctx, s);
+    const double fraction = ctx.parameters.getDouble("normal-wiggle-max-offset");
+    InvariantCheck bound = check("every normal offset is at most normal-wiggle-max-offset times "
+                                 "the mean distance to the one-ring (§6.4)");
+    for (Index v = 0; v < m.vertexCount(); ++v) {
+        const double alpha = std::abs(m.vertex(v).normalOffset);
+        const double limit = offsetBound(m, v, fraction);
+        if (alpha > 0.0 && !(alpha <= limit * (1.0 + 1e-9)))
+            violate(bound, "vertex " + std::to_string(v) + " offset " + std::to_string(alpha) +
+                               " bound " + std::to_string(limit));
+    }
+    out.push_back(bound);
+    return out;
+}
+
+} // namespace
+
+void addNormalWigglePhase(Method& m) {
+    m.parameters.push_back({"normal-wiggle-samples",
+                            "Normal wiggle: offsets",
+                            "Offsets along the normal line p + α n tried per vertex (§6.4: "
+                            "100).",
+                            ParameterType::Int,
+                            100,
+                            1,
+                            10000,
+                            {}});
+    m.parameters.push_back(
+        {"normal-wiggle-max-offset",
+         "Normal wiggle: largest offset",
+         "Largest |α| as a fraction of the vertex's mean distance to its one-ring (§6.4: 1, "
+         "\"maximum displacement equal to the average distance to the vertices in the "
+         "one-ring\").",
+         ParameterType::Double,
+         1.0,
+         0.0,
+         1.0,
+         {}});
+    m.parameters.push_back({"normal-wiggle-max-sweeps",
+                            "Normal wiggle: sweeps",
+                            "Largest number of sweeps over the vertices of inconsistent faces "
+                            "in the normal wiggle (§6.4; unspecified).",
+                            ParameterType::Int,
+                            100,
+                            1,
+                            10000,
+                            {}});
+    m.phases.push_back(
+        {"normal-wiggle",
+         "§6.4 Vertex Wiggling in the Normal Direction: every vertex of an inconsistent face "
+         "moves to f(u) + α n(u), α among normal-wiggle-samples offsets up to the mean "
+         "one-ring distance, leaving the fewest inconsistent faces around it (strictly fewer), "
+         "ties to the smallest |α|; no face turns over in 3D; sweeps until nothing improves.",
+         runNormalWiggle, checkNormalWiggle});
+}
+
+} // namespace contour::consistent

@@ -1,0 +1,37 @@
+#include "contours/consistent/OptimizationPhaseSupport.h"
+
+#include "contours/consistent/ConsistentPhaseSupport.h"
+#include "contours/consistent/RadialTriangles.h"
+
+namespace contour::consistent {
+
+void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
+                  const std::string& sweepParameter) {
+    s.setCounter("inconsistent faces before", static_cast<double>(t.before));
+    s.setCounter(what + " tried", static_cast<double>(t.tried));
+    s.setCounter(what + " accepted", static_cast<double>(t.accepted));
+    s.setCounter("sweeps", t.sweeps);
+    if (t.sweepLimitHit)
+        s.notes.push_back("stopped by " + sweepParameter + " (" + std::to_string(t.sweeps) +
+                          " sweeps) while moves still improved consistency");
+}
+
+std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Snapshot& s,
+                                               bool radialOnSurface) {
+    const ConsistentMesh m = reload(ctx, s);
+    const Analysis a = analyse(m);
+    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
+    for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))
+        out.push_back(std::move(c));
+    if (radialOnSurface && ctx.parameters.has("radial-root-tolerance"))
+        out.push_back(radialEdgeCheck(ctx, m));
+    InvariantCheck monotone = check("the phase did not increase the inconsistent faces");
+    const double before = s.counter("inconsistent faces before", -1.0);
+    if (before >= 0.0 && static_cast<double>(a.inconsistent) > before)
+        violate(monotone, std::to_string(a.inconsistent) + " inconsistent faces after, " +
+                              std::to_string(static_cast<long long>(before)) + " before");
+    out.push_back(monotone);
+    return out;
+}
+
+} // namespace contour::consistent

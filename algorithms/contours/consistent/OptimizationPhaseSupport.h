@@ -1,0 +1,37 @@
+#pragma once
+// What the five optimization phases of Bénard 2014 §6.4 (notes §2.4) share:
+// the sweep bookkeeping ("repeat until nothing improves", bounded by a
+// sweep limit), their counters and their post-conditions.
+#include "contours/consistent/ConsistentMesh.h"
+#include "pipeline/Method.h"
+
+#include <string>
+#include <vector>
+
+namespace contour::consistent {
+
+struct OptimizationTally {
+    long long before = 0;   // inconsistent faces when the phase starts
+    long long tried = 0;    // moves evaluated (vertices, faces or radial edges visited)
+    long long accepted = 0; // moves applied
+    int sweeps = 0;
+    bool sweepLimitHit = false; // the last sweep still improved
+};
+
+// Counters "inconsistent faces before", "<what> tried", "<what> accepted",
+// "sweeps", and a note when the sweep limit stopped the phase. Call after
+// publish() (which writes "inconsistent faces", the count after).
+void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
+                  const std::string& sweepParameter);
+
+// Post-conditions after every §6.4 phase: the common ones (embedding, no
+// parameter fold, charts, no degenerate CC edge), those of contour insertion
+// (no FB edge, every VBO defined, |g| at C vertices, cusp valence 4), the
+// radial edges' (when radial edge insertion ran and `radialOnSurface`: the
+// normal wiggle moves vertices off the surface, where h_p is no longer
+// evaluated at f(u)), and "the phase did not increase the inconsistent
+// faces".
+std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Snapshot& s,
+                                               bool radialOnSurface);
+
+} // namespace contour::consistent

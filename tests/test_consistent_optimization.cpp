@@ -1,0 +1,206 @@
+// The optimization phase of consistent contours (Bénard, Hertzmann & Kass
+// 2014 §6.4; notes §2.4, §6.1): the Bank-Smith quality metric, and over the
+// 26-view protocol on Catmull-Clark sphere, torus, bumpy torus and spot: no
+// post-condition violated after any phase, the inconsistent faces never
+// increase from one optimization sub-phase to the next, every normal offset
+// within the mean one-ring distance, and the totals reported per phase.
+// The asserted ceilings are the figures measured when the phases were
+// written (with a margin), so a regression fails.
+#include "ContourTestSupport.h"
+#include "contours/consistent/TriangleQuality.h"
+#include "mesh/MeshReader.h"
+#include "pipeline/FieldNames.h"
+
+#include <QtTest>
+#include <cmath>
+#include <filesystem>
+
+using namespace contour;
+using namespace contour::consistent;
+using namespace contour::testing;
+
+namespace {
+
+// The phase whose output feeds the optimization, then the §6.4 sub-phases
+// in order.
+const char* const kPhases[] = {"radial-flips",     "radial-extension", "optimization-flips",
+                               "parameter-wiggle", "edge-splitting",   "normal-wiggle"};
+constexpr int kPhaseCount = 6;
+
+const Snapshot& after(const std::vector<Snapshot>& snapshots, const std::string& phase) {
+    for (const Snapshot& s : snapshots)
+        if (s.phaseName == phase)
+            return s;
+    throw std::runtime_error("no phase " + phase);
+}
+
+std::vector<Snapshot> runViews(const std::shared_ptr<const PolygonMesh>& cage,
+                               const Camera& camera) {
+    const Method& m = *findMethod("consistent");
+    ParameterSet p = ParameterSet::defaults(m.parameters);
+    p.set("surface", std::string("catmull-clark"));
+    Runner runner(m, makeInputSnapshot(cage), camera, p);
+    runner.runToEnd();
+    std::vector<Snapshot> out;
+    for (int i = 0; i <= runner.completedPhases(); ++i)
+        out.push_back(runner.snapshot(i));
+    return out;
+}
+
+// Notes §6.1 item 2 after the normal wiggle: |α| <= the mean distance from
+// f(u) to the one-ring's f(u), recomputed from the published fields
+// (f(u) = position - α n(u)). Returns the largest ratio |α| / bound.
+double largestOffsetRatio(const Snapshot& s) {
+    const TriangleMesh& mesh = *s.mesh;
+    const auto& offset = *s.field(fields::kNormalOffset)->scalars();
+    const auto& normal = *s.field(fields::kVertexNormal)->vectors();
+    std::vector<Vec3> base(mesh.vertexCount());
+    for (Index v = 0; v < mesh.vertexCount(); ++v)
+        base[v] = mesh.position(v) - offset[v] * normal[v];
+    std::vector<double> sum(mesh.vertexCount(), 0.0);
+    std::vector<int> count(mesh.vertexCount(), 0);
+    for (Index e = 0; e < mesh.edgeCount(); ++e) {
+        const Index h = mesh.edgeHalfedge(e);
+        const Index a = mesh.from(h), b = mesh.to(h);
+        const double d = (base[a] - base[b]).norm();
+        sum[a] += d;
+        sum[b] += d;
+        ++count[a];
+        ++count[b];
+    }
+    double worst = 0.0;
+    for (Index v = 0; v < mesh.vertexCount(); ++v)
+        if (offset[v] != 0.0)
+            worst = std::max(worst, std::abs(offset[v]) / (sum[v] / count[v]));
+    return worst;
+}
+
+struct Tally {
+    double inconsistent[kPhaseCount] = {}, faces[kPhaseCount] = {}, worst[kPhaseCount] = {};
+    double offsetRatio = 0.0;
+};
+
+void report(const std::string& name, const Tally& t, int views) {
+    for (int k = 0; k < kPhaseCount; ++k)
+        qInfo("%s, %d views, after %s: %.0f inconsistent of %.0f faces (%.4f %%), mean %.2f "
+              "per view, worst view %.0f",
+              name.c_str(), views, kPhases[k], t.inconsistent[k], t.faces[k],
+              100.0 * t.inconsistent[k] / t.faces[k], t.inconsistent[k] / views, t.worst[k]);
+    qInfo("%s: largest normal offset / mean one-ring distance %.3f", name.c_str(), t.offsetRatio);
+}
+
+std::shared_ptr<const PolygonMesh> loadShape(const std::string& name) {
+    if (name == "spot") {
+        const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
+        if (!std::filesystem::exists(path))
+            throw std::runtime_error("samples/spot_control_mesh.obj is absent");
+        return std::make_shared<const PolygonMesh>(readMesh(path));
+    }
+    return shape(name, name == "sphere" ? 8 : 12);
+}
+
+} // namespace
+
+class TestConsistentOptimization : public QObject {
+    Q_OBJECT
+private slots:
+    // Bank & Smith 1997: q = 4√3 A / (l1² + l2² + l3²).
+    void bankSmithQualityMetric() {
+        const Vec3 a(0, 0, 0), b(1, 0, 0), c(0.5, std::sqrt(3.0) / 2.0, 0);
+        QVERIFY(std::abs(bankSmithQuality(a, b, c) - 1.0) < 1e-12);
+        // Invariant under scaling, rotation (here a permutation of axes) and
+        // corner order.
+        QVERIFY(std::abs(bankSmithQuality(7 * a, 7 * b, 7 * c) - 1.0) < 1e-12);
+        const auto swap = [](const Vec3& p) {
+            return Vec3(p.z(), p.x(), p.y());
+        };
+        QVERIFY(std::abs(bankSmithQuality(swap(c), swap(a), swap(b)) - 1.0) < 1e-12);
+        // Right isosceles: 4√3 (1/2) / (1 + 1 + 2) = √3 / 2.
+        QVERIFY(std::abs(bankSmithQuality(a, b, Vec3(0, 1, 0)) - std::sqrt(3.0) / 2.0) < 1e-12);
+        // Degenerate: collinear corners, a repeated corner, all corners equal.
+        QCOMPARE(bankSmithQuality(a, b, Vec3(3, 0, 0)), 0.0);
+        QCOMPARE(bankSmithQuality(a, b, b), 0.0);
+        QCOMPARE(bankSmithQuality(a, a, a), 0.0);
+        // A sliver is close to 0, below an equilateral.
+        const double sliver = bankSmithQuality(a, b, Vec3(0.5, 1e-3, 0));
+        QVERIFY(sliver > 0.0 && sliver < 0.01);
+    }
+
+    void optimizationOverTheProtocol_data() {
+        QTest::addColumn<QString>("shapeName");
+        // Ceiling on the final (after normal-wiggle) inconsistent share of
+        // faces over all views, in percent: the measured figure with a
+        // margin (see the qInfo lines for the figures themselves).
+        QTest::addColumn<double>("ceilingPercent");
+        QTest::addRow("sphere") << QString("sphere") << 0.01;
+        QTest::addRow("torus") << QString("torus") << 0.5;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.3;
+        QTest::addRow("spot") << QString("spot") << 0.65;
+    }
+    void optimizationOverTheProtocol() {
+        QFETCH(QString, shapeName);
+        QFETCH(double, ceilingPercent);
+        const std::string name = shapeName.toStdString();
+        const auto cage = loadShape(name);
+        std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+#ifndef __OPTIMIZE__
+        // Debug builds check every invariant inside the phases: fewer views.
+        views.resize(6);
+#endif
+        Tally t;
+        for (size_t v = 0; v < views.size(); ++v) {
+            const std::vector<Snapshot> snapshots = runViews(cage, views[v]);
+            for (const Snapshot& s : snapshots)
+                for (const InvariantCheck& c : s.invariants)
+                    QVERIFY2(c.violations == 0,
+                             qPrintable(QString::fromStdString(
+                                 name + " view " + std::to_string(v) + ", " + s.phaseName + ": " +
+                                 c.name + " violated " + std::to_string(c.violations) +
+                                 "x, first " + c.firstExample)));
+            double previous = -1.0;
+            for (int k = 0; k < kPhaseCount; ++k) {
+                const Snapshot& s = after(snapshots, kPhases[k]);
+                const double n = s.counter("inconsistent faces");
+                QVERIFY(n >= 0.0);
+                if (previous >= 0.0)
+                    QVERIFY2(n <= previous,
+                             qPrintable(QString::fromStdString(
+                                 name + " view " + std::to_string(v) + ": " + kPhases[k] +
+                                 " raised the inconsistent faces from " + std::to_string(previous) +
+                                 " to " + std::to_string(n))));
+                if (k > 0)
+                    QCOMPARE(s.counter("inconsistent faces before"), previous);
+                previous = n;
+                t.inconsistent[k] += n;
+                t.faces[k] += s.counter("faces");
+                t.worst[k] = std::max(t.worst[k], n);
+            }
+            const Snapshot& last = after(snapshots, "normal-wiggle");
+            const double ratio = largestOffsetRatio(last);
+            QVERIFY2(ratio <= 1.0 + 1e-9, qPrintable(QString("offset ratio %1").arg(ratio)));
+            t.offsetRatio = std::max(t.offsetRatio, ratio);
+            // Contour insertion's post-conditions, from the published fields.
+            const auto& label = *last.field(fields::kLabel)->labels();
+            const auto& vbo = *last.field(fields::kVbo)->labels();
+            for (int l : vbo)
+                QVERIFY(l != 0);
+            for (Index e = 0; e < last.mesh->edgeCount(); ++e) {
+                const Index h = last.mesh->edgeHalfedge(e);
+                QVERIFY(label[last.mesh->from(h)] * label[last.mesh->to(h)] >= 0);
+            }
+        }
+        report(name, t, static_cast<int>(views.size()));
+        const double finalPercent =
+            100.0 * t.inconsistent[kPhaseCount - 1] / t.faces[kPhaseCount - 1];
+        QVERIFY2(finalPercent <= ceilingPercent,
+                 qPrintable(QString("%1 %: final inconsistent share above the measured ceiling")
+                                .arg(finalPercent)));
+        // The optimization as a whole must remove inconsistent faces
+        // wherever there are any to remove.
+        if (t.inconsistent[0] > 0)
+            QVERIFY(t.inconsistent[kPhaseCount - 1] < t.inconsistent[0]);
+    }
+};
+
+QTEST_APPLESS_MAIN(TestConsistentOptimization)
+#include "test_consistent_optimization.moc"
