@@ -562,6 +562,38 @@ private slots:
         QVERIFY2(r.err.contains("--json and --ply name the same file"), qPrintable(r.err));
     }
 
+    // --strict turns counted post-condition violations into exit code 3 (a
+    // Debug build fails the phase itself: exit code 1). Two bisection steps
+    // cannot bring |g| at the C vertices below 1e-16, so the contour
+    // insertion's root post-condition is violated on purpose.
+    void strictExitCode() {
+        const QString out = freshOutputDir("strict");
+        const QStringList args{"--mesh",
+                               sphere_,
+                               "--method",
+                               "consistent",
+                               "--root-tolerance",
+                               "1e-16",
+                               "--root-max-iterations",
+                               "2",
+                               "--json",
+                               out + "/r.json"};
+        RunResult r = run(args);
+#ifdef CONTOUR_CHECK_INVARIANTS
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("|g|"), qPrintable(r.err));
+#else
+        QCOMPARE(r.exitCode, 0); // counted, reported, not fatal
+        QVERIFY(QFile::exists(out + "/r.json"));
+        r = run(QStringList(args) << "--strict");
+        QCOMPARE(r.exitCode, 3);
+        QVERIFY2(r.err.contains("--strict") && r.err.contains("|g|"), qPrintable(r.err));
+        QVERIFY(QFile::exists(out + "/r.json")); // the outputs are still written
+        // Without violations --strict changes nothing.
+        QCOMPARE(run({"--mesh", sphere_, "--strict", "--json", out + "/m.json"}).exitCode, 0);
+#endif
+    }
+
     void cliErrors_data() {
         QTest::addColumn<QStringList>("args");
         QTest::addColumn<int>("exitCode");
@@ -598,9 +630,8 @@ private slots:
         QTest::newRow("--phase too large")
             << QStringList{"--mesh", s, "--phase", QString::number(phases + 1)} << 2
             << QString("--phase: %1 is not in %2").arg(phases + 1).arg(range);
-        QTest::newRow("--phase negative")
-            << QStringList{"--mesh", s, "--phase", "-1"} << 2
-            << QString("--phase: -1 is not in %1").arg(range);
+        QTest::newRow("--phase negative") << QStringList{"--mesh", s, "--phase", "-1"} << 2
+                                          << QString("--phase: -1 is not in %1").arg(range);
         QTest::newRow("bad --height value")
             << QStringList{"--mesh", s, "--height", "-5"} << 2 << "--height: -5 pixels";
         QTest::newRow("--camera with --eye")

@@ -201,6 +201,9 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
     app.add_option("--svg", o.svgPath, "Write the curves as SVG.")
         ->type_name("FILE")
         ->group(outputGroup);
+    app.add_flag("--strict", o.strict,
+                 "Exit with code 3 when any post-condition of any phase is violated (the "
+                 "outputs are still written).");
     app.add_option("--json", o.jsonPath, "Write the JSON report.")
         ->type_name("FILE")
         ->group(outputGroup);

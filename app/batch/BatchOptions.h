@@ -36,6 +36,9 @@ struct BatchOptions {
     bool views26 = false;
     std::optional<int> phases; // stop after this many phases; all when empty
     std::string svgPath, jsonPath, writeCameraPath, plyPath;
+    // Exit with code 3 when any phase of any view violated a post-condition
+    // (Release builds count violations instead of failing the phase).
+    bool strict = false;
 };
 
 enum class ParseStatus { Run, Exit };

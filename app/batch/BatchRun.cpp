@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <ostream>
 #include <vector>
@@ -156,6 +157,8 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
 
     JsonReport report("contour-batch", CONTOUR_VERSION, o.meshPath, input, method, o.parameters);
     std::vector<PendingFile> files;
+    long long violations = 0;
+    std::string firstViolation;
     const bool several = cameras.size() > 1;
     for (size_t v = 0; v < cameras.size(); ++v) {
         const Camera& camera = cameras[v];
@@ -179,6 +182,16 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
             printPhase(out, method, runner->snapshot(done), runner->snapshot(done - 1));
         }
         printViewTotals(out, runner->current(), camera);
+        for (const Snapshot& s : runner->snapshots())
+            for (const InvariantCheck& c : s.invariants)
+                if (c.violations > 0) {
+                    if (violations == 0)
+                        firstViolation = (several ? "view " + std::to_string(view) + ", " : "") +
+                                         s.phaseName + ": " + c.name + " (" +
+                                         std::to_string(c.violations) + "x, first " +
+                                         c.firstExample + ")";
+                    violations += c.violations;
+                }
         report.addView(camera, runner->snapshots());
         const std::string title = o.meshPath + " - " + method.label +
                                   (several ? ", view " + std::to_string(view) : "") + ", after " +
@@ -226,6 +239,12 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
         throw BatchFailure(e.what());
     }
     printWritten(out, written);
+    if (o.strict && violations > 0) {
+        out.flush();
+        std::cerr << "contour-batch: --strict: " << violations
+                  << " post-conditions violated; first: " << firstViolation << "\n";
+        return 3;
+    }
     return 0;
 }
 
