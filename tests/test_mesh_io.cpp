@@ -6,6 +6,7 @@
 #include "mesh/MeshReader.h"
 #include "mesh/MeshValidation.h"
 #include "mesh/MeshWriter.h"
+#include "mesh/PolygonTriangulation.h"
 
 #include <QDir>
 #include <QFile>
@@ -83,6 +84,33 @@ class TestMeshIo : public QObject {
     Q_OBJECT
 
 private slots:
+    // A non-convex polygon (a U, first corner next to the notch): the fan
+    // from corner 0 would cover the notch with reversed triangles; ear
+    // clipping keeps every triangle's winding and the polygon's area.
+    void nonConvexPolygonTriangulation() {
+        const std::vector<Vec3> p{{0, 0, 0}, {3, 0, 0}, {3, 3, 0}, {2, 3, 0},
+                                  {2, 1, 0}, {1, 1, 0}, {1, 3, 0}, {0, 3, 0}};
+        std::vector<Index> polygon(p.size());
+        for (size_t i = 0; i < p.size(); ++i)
+            polygon[i] = static_cast<Index>((i + 4) % p.size()); // start at the notch
+        const auto triangles = triangulatePolygon(p, polygon);
+        QCOMPARE(triangles.size(), p.size() - 2);
+        double area = 0.0;
+        for (const auto& t : triangles) {
+            const double a = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).z() / 2.0;
+            QVERIFY2(a > 0.0, "a triangle is reversed or flat");
+            area += a;
+        }
+        QCOMPARE(area, 7.0); // 3x3 minus the 1x2 notch
+        // The fan from the notch corner does reverse triangles (why this exists).
+        double fanReversed = 0.0;
+        for (size_t i = 1; i + 1 < polygon.size(); ++i) {
+            const Vec3 &a = p[polygon[0]], &b = p[polygon[i]], &c = p[polygon[i + 1]];
+            fanReversed += (b - a).cross(c - a).z() < 0.0;
+        }
+        QVERIFY(fanReversed > 0);
+    }
+
     void loaderRejects_data();
     void loaderRejects();
     void formatsReadIdentically_data();

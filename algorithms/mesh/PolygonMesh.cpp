@@ -1,5 +1,7 @@
 #include "mesh/PolygonMesh.h"
 
+#include "mesh/PolygonTriangulation.h"
+
 namespace contour {
 
 void PolygonMesh::addFace(std::span<const Index> polygon) {
@@ -48,8 +50,8 @@ TriangleMesh PolygonMesh::triangulate() const {
             source.insert(source.end(), 2, f);
             continue;
         }
-        for (size_t i = 1; i + 1 < p.size(); ++i) {
-            triangles.push_back({p[0], p[i], p[i + 1]});
+        for (const auto& t : triangulatePolygon(positions, p)) {
+            triangles.push_back(t);
             source.push_back(f);
         }
     }
