@@ -132,10 +132,10 @@ private slots:
         // faces over all views, in percent: the measured figure with a
         // margin (see the qInfo lines for the figures themselves).
         QTest::addColumn<double>("ceilingPercent");
-        QTest::addRow("sphere") << QString("sphere") << 0.01;
-        QTest::addRow("torus") << QString("torus") << 0.5;
-        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.3;
-        QTest::addRow("spot") << QString("spot") << 0.65;
+        QTest::addRow("sphere") << QString("sphere") << 0.005;
+        QTest::addRow("torus") << QString("torus") << 0.33;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.21;
+        QTest::addRow("spot") << QString("spot") << 0.42;
     }
     void optimizationOverTheProtocol() {
         QFETCH(QString, shapeName);

@@ -376,13 +376,13 @@ private slots:
         QCOMPARE(radialEdgesOnSide(m, p, VertexLabel::Back), 0);
     }
 
-    void sphere() { checkShape("sphere", shape("sphere", 8), {0.2, 50.0}); }
-    void torus() { checkShape("torus", shape("torus", 12), {0.25, 55.0}); }
+    void sphere() { checkShape("sphere", shape("sphere", 8), {0.1, 72.0}); }
+    void torus() { checkShape("torus", shape("torus", 12), {0.07, 87.0}); }
     void spot() {
         const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
         QVERIFY2(std::filesystem::exists(path), "samples/spot_control_mesh.obj is absent");
         checkShape("spot_control_mesh", std::make_shared<const PolygonMesh>(readMesh(path)),
-                   {0.12, 55.0});
+                   {0.07, 83.0});
     }
 };
 

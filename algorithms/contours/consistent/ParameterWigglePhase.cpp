@@ -3,9 +3,12 @@
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
+#include "contours/consistent/RadialTriangles.h"
 #include "contours/consistent/Shiftability.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 namespace contour::consistent {
 
@@ -36,23 +39,84 @@ bool onTaggedEdge(const ConsistentMesh& m, Index v) {
     return false;
 }
 
+// The C vertex p when v's only tagged edge is one radial edge p-v: v may
+// then move along p's radial plane (it stays the far end of a radial edge,
+// §6.3 g), else kInvalidIndex.
+Index radialPartner(const ConsistentMesh& m, Index v) {
+    Index p = kInvalidIndex;
+    for (Index w : m.neighbours(v)) {
+        const int tag = m.edgeTag(v, w);
+        if (tag == kNoTag)
+            continue;
+        if (tag != kRadialEdge || p != kInvalidIndex || m.vertex(w).label != VertexLabel::Contour)
+            return kInvalidIndex;
+        p = w;
+    }
+    return p;
+}
+
 struct WiggleStats {
-    long long skipped = 0, cancelledSamples = 0, rejected = 0;
+    long long skipped = 0, cancelledSamples = 0, rejected = 0, radialMoved = 0,
+              radialUnconverged = 0;
+};
+
+// The zero of h_p on the parameter segment a-b (h_p(a), h_p(b) of opposite
+// signs), by the Illinois variant of regula falsi, to `tolerance` (a
+// distance); nullopt when a chart is missing or it does not converge.
+std::optional<MeshVertex> radialRoot(const ConsistentMesh& m, const MeshVertex& p,
+                                     const Preimage& a, double ha, const Preimage& b, double hb,
+                                     double tolerance, int maxIterations) {
+    double lo = 0.0, hi = 1.0;
+    int side = 0;
+    for (int it = 0; it < maxIterations; ++it) {
+        const double t = (lo * hb - hi * ha) / (hb - ha);
+        const std::optional<Preimage> u = m.interpolate(a, b, t);
+        if (!u)
+            return std::nullopt;
+        MeshVertex x = m.evaluate(*u);
+        const double h = radialPlaneDistance(m.camera(), p, x.position);
+        if (std::abs(h) <= tolerance)
+            return x;
+        if ((h < 0.0) == (ha < 0.0)) {
+            lo = t;
+            ha = h;
+            if (side == -1)
+                hb *= 0.5;
+            side = -1;
+        } else {
+            hi = t;
+            hb = h;
+            if (side == 1)
+                ha *= 0.5;
+            side = 1;
+        }
+    }
+    return std::nullopt;
+}
+
+struct WiggleSettings {
+    Lattice grid;
+    double radialTolerance = 0.0;
+    int radialIterations = 100;
 };
 
 // Moves v to the sample of its one-ring that leaves the fewest inconsistent
 // faces around it (strictly fewer than now), ties to the largest minimum
 // Bank-Smith quality of the ring. C vertices stay (they sit on g = 0, and
 // the simplest way to keep them there is not to move them), as do
-// boundary vertices and endpoints of radial or cusp edges (moving them would
-// take them off the radial plane the edge was built on, §6.3). Candidates
-// must keep every VBO defined, make no degenerate CC edge, turn no face over
-// in 3D and satisfy appendix C (shiftable(): no parameter fold, no CCC, no
-// "X", interpolation possible).
-bool wiggle(ConsistentMesh& m, Index v, const Lattice& grid, int phase, WiggleStats& st) {
+// boundary vertices and endpoints of cusp edges or of several radial
+// edges. The far end r of one radial edge p-r moves only along p's radial
+// plane (§6.3: r stays on it; not in the paper, whose §6.4 wiggle does not
+// say how radial edges are kept): its candidates are the zeros of h_p on
+// the lattice rows, and it keeps its label. Candidates must keep every VBO
+// defined, make no degenerate CC edge, turn no face over in 3D and satisfy
+// appendix C (shiftable(): no parameter fold, no CCC, no "X", interpolation
+// possible).
+bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, WiggleStats& st) {
     const MeshVertex current = m.vertex(v);
+    const Index partner = radialPartner(m, v);
     if (current.label == VertexLabel::Contour || current.cusp || m.isBoundaryVertex(v) ||
-        onTaggedEdge(m, v)) {
+        (onTaggedEdge(m, v) && partner == kInvalidIndex)) {
         ++st.skipped;
         return false;
     }
@@ -68,6 +132,38 @@ bool wiggle(ConsistentMesh& m, Index v, const Lattice& grid, int phase, WiggleSt
     const std::vector<Index> ring = m.neighbours(v);
     std::optional<MeshVertex> best;
     LocalScore bestScore;
+    auto consider = [&](MeshVertex x) {
+        if (x.label == VertexLabel::Contour)
+            return;
+        if (partner != kInvalidIndex && x.label != current.label)
+            return;
+        // An FB edge would make its faces' VBO undefined.
+        if (std::any_of(ring.begin(), ring.end(), [&](Index w) {
+                return static_cast<int>(m.vertex(w).label) * static_cast<int>(x.label) < 0;
+            }))
+            return;
+        x.provenance = Provenance::Wiggled;
+        x.phase = phase;
+        edit.moveVertex(v, x);
+        const int count = edit.inconsistent();
+        if (count >= now.inconsistent || (best && count > bestScore.inconsistent))
+            return;
+        const LocalScore trial{count, edit.minQuality()};
+        if (best && !betterScore(trial, bestScore))
+            return;
+        bool ok = edit.labelsValid();
+        for (size_t i = 0; ok && i < star.size(); ++i)
+            ok = turned[i] || !edit.turnedOver(edit.faces()[i]);
+        ok = ok && shiftable(m, v, x.preimage, x.label);
+        if (!ok) {
+            ++st.rejected;
+            return;
+        }
+        best = x;
+        bestScore = trial;
+    };
+    const MeshVertex* p = partner != kInvalidIndex ? &m.vertex(partner) : nullptr;
+    const Lattice& grid = set.grid;
     for (const Triangle& face : edit.faces()) {
         int k = 0;
         while (face[k] != v)
@@ -78,55 +174,52 @@ bool wiggle(ConsistentMesh& m, Index v, const Lattice& grid, int phase, WiggleSt
             const double level = static_cast<double>(row) / grid.n;
             const std::optional<Preimage> ra = m.interpolate(pv, pa, level);
             const std::optional<Preimage> rb = m.interpolate(pv, pb, level);
-            for (int j = 1; j < row; ++j) {
-                // Appendix B charts; a missing chart drops the sample.
-                const std::optional<Preimage> p =
-                    ra && rb ? m.interpolate(*ra, *rb, static_cast<double>(j) / row)
-                             : std::optional<Preimage>();
-                if (!p) {
+            if (p) {
+                // The radial curve crosses this row where h_p changes sign.
+                if (!ra || !rb) {
                     ++st.cancelledSamples;
                     continue;
                 }
-                MeshVertex x = m.evaluate(*p);
-                if (x.label == VertexLabel::Contour)
+                const double ha = radialPlaneDistance(m.camera(), *p, m.evaluate(*ra).position);
+                const double hb = radialPlaneDistance(m.camera(), *p, m.evaluate(*rb).position);
+                if (!((ha < 0.0 && hb > 0.0) || (ha > 0.0 && hb < 0.0)))
                     continue;
-                // An FB edge would make its faces' VBO undefined.
-                if (std::any_of(ring.begin(), ring.end(), [&](Index w) {
-                        return static_cast<int>(m.vertex(w).label) * static_cast<int>(x.label) < 0;
-                    }))
-                    continue;
-                x.provenance = Provenance::Wiggled;
-                x.phase = phase;
-                edit.moveVertex(v, x);
-                const int count = edit.inconsistent();
-                if (count >= now.inconsistent || (best && count > bestScore.inconsistent))
-                    continue;
-                const LocalScore trial{count, edit.minQuality()};
-                if (best && !betterScore(trial, bestScore))
-                    continue;
-                bool ok = edit.labelsValid();
-                for (size_t i = 0; ok && i < star.size(); ++i)
-                    ok = turned[i] || !edit.turnedOver(edit.faces()[i]);
-                ok = ok && shiftable(m, v, x.preimage, x.label);
-                if (!ok) {
-                    ++st.rejected;
+                const std::optional<MeshVertex> x =
+                    radialRoot(m, *p, *ra, ha, *rb, hb, set.radialTolerance, set.radialIterations);
+                if (!x) {
+                    ++st.radialUnconverged;
                     continue;
                 }
-                best = x;
-                bestScore = trial;
+                consider(*x);
+                continue;
+            }
+            for (int j = 1; j < row; ++j) {
+                // Appendix B charts; a missing chart drops the sample.
+                const std::optional<Preimage> u =
+                    ra && rb ? m.interpolate(*ra, *rb, static_cast<double>(j) / row)
+                             : std::optional<Preimage>();
+                if (!u) {
+                    ++st.cancelledSamples;
+                    continue;
+                }
+                consider(m.evaluate(*u));
             }
         }
     }
     if (!best)
         return false;
     m.setVertex(v, *best, phase);
+    st.radialMoved += p != nullptr;
     return true;
 }
 
 void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
-    const Lattice grid = lattice(ctx.parameters.getInt("wiggle-samples"));
+    WiggleSettings set;
+    set.grid = lattice(ctx.parameters.getInt("wiggle-samples"));
+    set.radialTolerance = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
+    set.radialIterations = ctx.parameters.getInt("radial-root-max-iterations");
     const int maxSweeps = ctx.parameters.getInt("wiggle-max-sweeps");
     OptimizationTally tally;
     WiggleStats st;
@@ -138,7 +231,7 @@ void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
         for (Index v : verticesOf(m, faces)) {
             ctx.checkCancelled();
             ++tally.tried;
-            accepted += wiggle(m, v, grid, phase, st);
+            accepted += wiggle(m, v, set, phase, st);
         }
         tally.accepted += accepted;
         if (accepted == 0)
@@ -148,8 +241,12 @@ void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
     }
     publish(s, m);
     publishTally(s, tally, "vertices", "wiggle-max-sweeps");
-    s.setCounter("samples per face", static_cast<double>(grid.points()));
-    s.setCounter("vertices skipped (C, boundary, radial or cusp edge)",
+    s.setCounter("samples per face", static_cast<double>(set.grid.points()));
+    s.setCounter("radial-edge ends moved along their radial plane",
+                 static_cast<double>(st.radialMoved));
+    s.setCounter("radial-plane roots without a chart or unconverged",
+                 static_cast<double>(st.radialUnconverged));
+    s.setCounter("vertices skipped (C, boundary, cusp edge, two radial edges)",
                  static_cast<double>(st.skipped));
     s.setCounter("samples rejected (fold, appendix C, degenerate edge)",
                  static_cast<double>(st.rejected));
@@ -187,7 +284,9 @@ void addParameterWigglePhase(Method& m) {
          "§6.4 Vertex Wiggling in Parameter Space: every F or B vertex of an inconsistent "
          "face moves to the sample of its one-ring faces (wiggle-samples each) that leaves the "
          "fewest inconsistent faces around it, ties to the best minimum Bank-Smith quality; no "
-         "fold, appendix C respected; sweeps until nothing improves.",
+         "fold, appendix C respected; sweeps until nothing improves. The far end of a single "
+         "radial edge p-r moves only to the zeros of h_p on the sample rows (stays on p's "
+         "radial plane and on its side; not in the paper).",
          runParameterWiggle, checkParameterWiggle});
 }
 

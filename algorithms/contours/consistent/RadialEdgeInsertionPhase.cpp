@@ -576,7 +576,10 @@ void addRadialEdgeInsertionPhase(Method& m) {
          "crosses is split 1 -> 3 at the root of h_p between the midpoints of p's edges (two "
          "C vertices: the joint zero of h_p1 and h_p2 when one exists); p-r is tagged radial. "
          "Fig. 17 fold prevention: the new vertex must project inside the face, else the "
-         "adjacent edge of the folding triangle is flipped, else the insertion is skipped.",
+         "adjacent edge of the folding triangle is flipped, else the insertion is skipped. Not "
+         "in the paper: when h_p keeps its sign between the midpoints, the segments at 3/4 and "
+         "7/8 of p's edges are searched, and when the nearest crossing face fails, the next "
+         "ones are tried.",
          runRadialEdgeInsertion, checkRadialEdgeInsertion});
 }
 

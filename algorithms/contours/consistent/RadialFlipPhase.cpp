@@ -20,9 +20,10 @@ Triangle rotatedTo(Triangle t, Index v) {
 
 class RadialFlipper {
 public:
-    RadialFlipper(ConsistentMesh& mesh, int phase, bool fallback, bool keepConsistency)
+    RadialFlipper(ConsistentMesh& mesh, int phase, bool fallback, bool keepConsistency,
+                  bool fanSequences)
         : m_(mesh), phase_(phase), fallback_(fallback), keepConsistency_(keepConsistency),
-          queued_(mesh.vertexCount(), 0) {}
+          fanSequences_(fanSequences), queued_(mesh.vertexCount(), 0) {}
 
     long long flips = 0, rejectedFold = 0, fallbackAttempts = 0, fallbackNotApplicable = 0,
               fallbackFailed = 0, deletions = 0, fallbackFlips = 0, fanAttempts = 0, fanUndone = 0,
@@ -49,6 +50,7 @@ private:
     const int phase_;
     const bool fallback_;
     const bool keepConsistency_;
+    const bool fanSequences_;
     std::vector<char> queued_;
     std::deque<Index> queue_;
 
@@ -129,7 +131,7 @@ private:
             enqueue(d);
             return true;
         }
-        return clearFans(p);
+        return fanSequences_ && clearFans(p);
     }
 
     // The flip of a-b as one step of a sequence (no gain asked of it): not
@@ -150,10 +152,11 @@ private:
     }
 
     // §6.3 h when no single flip gains: p's fan between its radial edge p-r
-    // and the next C neighbour c holds vertices x1..xk (neither C nor on a
-    // radial edge of p), and each flip of p-xi alone leaves the count of
-    // standard radial triangles unchanged; the k flips together leave the
-    // standard radial triangle p-r-c (CC edge p-c). The sequence is flipped
+    // and the next C neighbour or radial-edge vertex c holds vertices x1..xk
+    // (neither C nor on a radial edge), and each flip of p-xi alone leaves
+    // the count of standard radial triangles unchanged; the k flips together
+    // leave the standard radial triangle p-r-c (CC edge p-c, or c on another
+    // radial edge). The sequence is flipped
     // from r's side, restarting from c's side when a flip would fold (as
     // the Fig. 16e fallback walks a fan), and kept only if the standard
     // radial triangles around increase (and, with radial-keep-consistency,
@@ -172,12 +175,15 @@ private:
                 Index c = kInvalidIndex;
                 for (int k = 1; k < n; ++k) {
                     const Index w = ringp[((i + dir * k) % n + n) % n];
-                    if (label(w, VertexLabel::Contour)) {
+                    // The fan ends at a C vertex (p-r-c gets a CC edge) or
+                    // at a vertex on another C vertex's radial edge (p-r-c
+                    // gets its second radial vertex).
+                    if (label(w, VertexLabel::Contour) ||
+                        (onRadialEdge(m_, w) && !isRadialEdge(m_, p, w))) {
                         c = w;
                         break;
                     }
-                    if (isRadialEdge(m_, p, w) || label(w, VertexLabel::Contour) ||
-                        m_.vertex(w).label != m_.vertex(r).label)
+                    if (isRadialEdge(m_, p, w) || m_.vertex(w).label != m_.vertex(r).label)
                         break;
                     xs.push_back(w);
                 }
@@ -416,7 +422,8 @@ void runRadialFlips(const PhaseContext& ctx, Snapshot& s) {
     const double standardBefore =
         static_cast<double>(std::count(classes.standard.begin(), classes.standard.end(), 1));
     RadialFlipper flipper(m, s.phaseIndex, ctx.parameters.getBool("radial-fold-fallback"),
-                          ctx.parameters.getBool("radial-keep-consistency"));
+                          ctx.parameters.getBool("radial-keep-consistency"),
+                          ctx.parameters.getBool("radial-fan-sequences"));
     flipper.run(ctx);
     const StandardRadialShare after = standardRadialShare(m);
     publish(s, m);
@@ -475,12 +482,26 @@ void addRadialFlipPhase(Method& m) {
          0,
          0,
          {}});
+    m.parameters.push_back(
+        {"radial-fan-sequences",
+         "Radial flip fan sequences",
+         "When no single flip increases the standard radial triangles, flip a C vertex's "
+         "fan between its radial edge and the next C or radial-edge vertex away as one "
+         "sequence (kept only if the standard radial triangles around increase). Not in the "
+         "paper, whose §6.3 h greedy single flips stop there; off reproduces them alone.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
     m.phases.push_back(
         {"radial-flips",
          "§6.3 h (Fig. 15h, 16e): every non-radial FC / BC edge incident on a C vertex is "
          "flipped when the flip increases the number of standard radial triangles without a "
          "fold (3D or parameter space), until none qualifies; a flip that would fold instead "
-         "flips the fan of its non-contour vertex and deletes that vertex (Fig. 16e right).",
+         "flips the fan of its non-contour vertex and deletes that vertex (Fig. 16e right). "
+         "With radial-fan-sequences (not in the paper), a fan that single flips cannot clear "
+         "is flipped away as one sequence.",
          runRadialFlips, checkRadialFlips});
 }
 
