@@ -103,26 +103,8 @@ void runEdgeSplitting(const PhaseContext& ctx, Snapshot& s) {
     const int maxSweeps = ctx.parameters.getInt("split-max-sweeps");
     OptimizationTally tally;
     SplitStats st;
-    std::vector<Index> faces = inconsistentFaces(m);
-    tally.before = static_cast<long long>(faces.size());
-    for (; tally.sweeps < maxSweeps && !faces.empty();) {
-        ++tally.sweeps;
-        long long accepted = 0;
-        for (Index f : faces) {
-            ctx.checkCancelled();
-            // Splits keep face indices (one half stays in the slot, the
-            // other is appended); an earlier split may have fixed f.
-            if (faceIsConsistent(m, f))
-                continue;
-            ++tally.tried;
-            accepted += splitBest(m, f, samples, phase, st);
-        }
-        tally.accepted += accepted;
-        if (accepted == 0)
-            break;
-        faces = inconsistentFaces(m);
-        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
-    }
+    sweepInconsistent(ctx, m, maxSweeps, false, tally,
+                      [&](Index f) { return splitBest(m, f, samples, phase, st); });
     publish(s, m);
     publishTally(s, tally, "faces", "split-max-sweeps");
     s.setCounter("splits", static_cast<double>(tally.accepted));

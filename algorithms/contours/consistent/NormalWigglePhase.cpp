@@ -99,22 +99,9 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
     const int maxSweeps = ctx.parameters.getInt("normal-wiggle-max-sweeps");
     OptimizationTally tally;
     NormalStats st;
-    std::vector<Index> faces = inconsistentFaces(m);
-    tally.before = static_cast<long long>(faces.size());
-    for (; tally.sweeps < maxSweeps && !faces.empty();) {
-        ++tally.sweeps;
-        long long accepted = 0;
-        for (Index v : verticesOf(m, faces)) {
-            ctx.checkCancelled();
-            ++tally.tried;
-            accepted += wiggleAlongNormal(m, v, samples, fraction, phase, st);
-        }
-        tally.accepted += accepted;
-        if (accepted == 0)
-            break;
-        faces = inconsistentFaces(m);
-        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
-    }
+    sweepInconsistent(ctx, m, maxSweeps, true, tally, [&](Index v) {
+        return wiggleAlongNormal(m, v, samples, fraction, phase, st);
+    });
     double largest = 0.0;
     long long offVertices = 0;
     for (Index v = 0; v < m.vertexCount(); ++v) {

@@ -75,25 +75,8 @@ void runOptimizationFlips(const PhaseContext& ctx, Snapshot& s) {
     const int maxSweeps = ctx.parameters.getInt("flip-max-sweeps");
     OptimizationTally tally;
     FlipStats st;
-    std::vector<Index> faces = inconsistentFaces(m);
-    tally.before = static_cast<long long>(faces.size());
-    for (; tally.sweeps < maxSweeps && !faces.empty();) {
-        ++tally.sweeps;
-        long long accepted = 0;
-        for (Index f : faces) {
-            ctx.checkCancelled();
-            // An earlier flip of this sweep may have fixed or rewritten f.
-            if (faceIsConsistent(m, f))
-                continue;
-            ++tally.tried;
-            accepted += flipBest(m, f, minQuality, phase, st);
-        }
-        tally.accepted += accepted;
-        if (accepted == 0)
-            break;
-        faces = inconsistentFaces(m);
-        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
-    }
+    sweepInconsistent(ctx, m, maxSweeps, false, tally,
+                      [&](Index f) { return flipBest(m, f, minQuality, phase, st); });
     publish(s, m);
     publishTally(s, tally, "faces", "flip-max-sweeps");
     s.setCounter("flips", static_cast<double>(tally.accepted));

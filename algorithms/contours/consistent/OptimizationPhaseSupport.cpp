@@ -1,6 +1,7 @@
 #include "contours/consistent/OptimizationPhaseSupport.h"
 
 #include "contours/consistent/ConsistentPhaseSupport.h"
+#include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/RadialTriangles.h"
 
 namespace contour::consistent {
@@ -32,6 +33,31 @@ std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Sn
                               std::to_string(static_cast<long long>(before)) + " before");
     out.push_back(monotone);
     return out;
+}
+
+void sweepInconsistent(const PhaseContext& ctx, ConsistentMesh& m, int maxSweeps,
+                       bool visitVertices, OptimizationTally& tally,
+                       const std::function<bool(Index)>& tryMove) {
+    std::vector<Index> faces = inconsistentFaces(m);
+    tally.before = static_cast<long long>(faces.size());
+    while (tally.sweeps < maxSweeps && !faces.empty()) {
+        ++tally.sweeps;
+        long long accepted = 0;
+        for (Index x : visitVertices ? verticesOf(m, faces) : faces) {
+            ctx.checkCancelled();
+            // Face moves keep face indices valid within a sweep; an earlier
+            // move may have fixed or rewritten this face.
+            if (!visitVertices && faceIsConsistent(m, x))
+                continue;
+            ++tally.tried;
+            accepted += tryMove(x);
+        }
+        tally.accepted += accepted;
+        if (accepted == 0)
+            break;
+        faces = inconsistentFaces(m);
+        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
+    }
 }
 
 } // namespace contour::consistent

@@ -5,6 +5,7 @@
 #include "contours/consistent/ConsistentMesh.h"
 #include "pipeline/Method.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,16 @@ struct OptimizationTally {
 // publish() (which writes "inconsistent faces", the count after).
 void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
                   const std::string& sweepParameter);
+
+// "Repeat until nothing improves" (§6.4) over the inconsistent faces: each
+// sweep visits the faces that are inconsistent when it starts (skipping
+// those an earlier move of the sweep made consistent) or, with
+// `visitVertices`, their vertices, calls `tryMove` on each (true: a move was
+// applied), and stops after a sweep that applied nothing or after
+// `maxSweeps`. Fills tally.before, tried, accepted, sweeps, sweepLimitHit.
+void sweepInconsistent(const PhaseContext& ctx, ConsistentMesh& m, int maxSweeps,
+                       bool visitVertices, OptimizationTally& tally,
+                       const std::function<bool(Index)>& tryMove);
 
 // Post-conditions after every §6.4 phase: the common ones (embedding, no
 // parameter fold, charts, no degenerate CC edge), those of contour insertion

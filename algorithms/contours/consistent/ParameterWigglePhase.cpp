@@ -223,22 +223,8 @@ void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
     const int maxSweeps = ctx.parameters.getInt("wiggle-max-sweeps");
     OptimizationTally tally;
     WiggleStats st;
-    std::vector<Index> faces = inconsistentFaces(m);
-    tally.before = static_cast<long long>(faces.size());
-    for (; tally.sweeps < maxSweeps && !faces.empty();) {
-        ++tally.sweeps;
-        long long accepted = 0;
-        for (Index v : verticesOf(m, faces)) {
-            ctx.checkCancelled();
-            ++tally.tried;
-            accepted += wiggle(m, v, set, phase, st);
-        }
-        tally.accepted += accepted;
-        if (accepted == 0)
-            break;
-        faces = inconsistentFaces(m);
-        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
-    }
+    sweepInconsistent(ctx, m, maxSweeps, true, tally,
+                      [&](Index v) { return wiggle(m, v, set, phase, st); });
     publish(s, m);
     publishTally(s, tally, "vertices", "wiggle-max-sweeps");
     s.setCounter("samples per face", static_cast<double>(set.grid.points()));
