@@ -5,6 +5,9 @@
 #include "pipeline/Runner.h"
 
 #include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace contour::testing {
 
@@ -18,6 +21,18 @@ inline Snapshot runMethod(const std::string& method, std::shared_ptr<const Polyg
     runner.runToEnd();
     return runner.current();
 }
+
+// Every snapshot of one run (the input first); phases are looked up by name,
+// never by index, since sub-phases get inserted between others.
+struct PhaseRun {
+    std::vector<Snapshot> snapshots;
+    const Snapshot& after(const std::string& phase) const {
+        for (const Snapshot& s : snapshots)
+            if (s.phaseName == phase)
+                return s;
+        throw std::runtime_error("no phase " + phase);
+    }
+};
 
 inline int contourLoops(const Snapshot& s, int* open = nullptr) {
     int loops = 0, opened = 0;

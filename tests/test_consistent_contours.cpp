@@ -21,17 +21,7 @@ using namespace contour::testing;
 
 namespace {
 
-struct ViewRun {
-    std::vector<Snapshot> snapshots;
-    // The snapshot a phase produced (phases are looked up by name: later
-    // sub-phases are inserted between these).
-    const Snapshot& after(const std::string& phase) const {
-        for (const Snapshot& s : snapshots)
-            if (s.phaseName == phase)
-                return s;
-        throw std::runtime_error("no phase " + phase);
-    }
-};
+using ViewRun = PhaseRun;
 
 ViewRun runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera) {
     const Method& m = *findMethod("consistent");

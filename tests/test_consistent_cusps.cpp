@@ -37,15 +37,7 @@ JointRootResult search(const std::function<std::array<double, 2>(long double, lo
         options);
 }
 
-struct ViewRun {
-    std::vector<Snapshot> snapshots;
-    const Snapshot& after(const std::string& phase) const {
-        for (const Snapshot& s : snapshots)
-            if (s.phaseName == phase)
-                return s;
-        throw std::runtime_error("no phase " + phase);
-    }
-};
+using ViewRun = PhaseRun;
 
 ViewRun run(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
             int subdivision = 0) {

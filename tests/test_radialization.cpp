@@ -157,15 +157,7 @@ private:
 
 // ------------------------------------------------------- the two phases
 
-struct ViewRun {
-    std::vector<Snapshot> snapshots;
-    const Snapshot& after(const std::string& phase) const {
-        for (const Snapshot& s : snapshots)
-            if (s.phaseName == phase)
-                return s;
-        throw std::runtime_error("no phase " + phase);
-    }
-};
+using ViewRun = PhaseRun;
 
 ViewRun runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera) {
     const Method& m = *findMethod("consistent");
