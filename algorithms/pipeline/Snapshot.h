@@ -65,6 +65,12 @@ struct InvariantCheck {
     std::string firstExample; // the first offending element, for the inspector
 };
 
+// Base of the working data a method may attach to a snapshot (see
+// Snapshot::methodState); readers dynamic_pointer_cast to their own type.
+struct MethodState {
+    virtual ~MethodState() = default;
+};
+
 struct Snapshot {
     int phaseIndex = -1; // -1 for the input snapshot
     std::string phaseName = "input";
@@ -78,6 +84,12 @@ struct Snapshot {
     std::vector<Counter> counters;
     std::vector<InvariantCheck> invariants;
     std::vector<std::string> notes; // honest remarks a user should see
+
+    // Optional working data a method publishes alongside the fields, so that
+    // its next phase need not rebuild it (the consistent method's evaluated
+    // vertices). A cache only: immutable once published, and every reader
+    // must be able to rebuild the same data from the fields alone.
+    std::shared_ptr<const MethodState> methodState;
 
     const Field* field(const std::string& name) const;
     void setField(const std::string& name, Field field);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tbb/parallel_for.h>
 
 namespace contour::consistent {
 
@@ -34,9 +35,44 @@ MeshVertex ConsistentMesh::evaluate(const Preimage& p) const {
 }
 
 Index ConsistentMesh::addVertex(const MeshVertex& v) {
+    preimageTable_.reset();
     vertices_.push_back(v);
     vertexFaces_.emplace_back();
     return vertexCount() - 1;
+}
+
+void ConsistentMesh::reserve(Index vertices, Index faces) {
+    vertices_.reserve(vertices);
+    vertexFaces_.reserve(vertices);
+    faces_.reserve(faces);
+    facePhase_.reserve(faces);
+    halfedgeFace_.reserve(3 * static_cast<size_t>(faces));
+}
+
+void ConsistentMesh::assign(std::vector<MeshVertex> vertices, std::vector<Triangle> faces,
+                            std::vector<int> facePhase, const HalfedgeMap* halfedges) {
+    preimageTable_.reset();
+    vertices_ = std::move(vertices);
+    faces_ = std::move(faces);
+    facePhase_ = std::move(facePhase);
+    std::vector<Index> valence(vertices_.size(), 0);
+    for (const Triangle& t : faces_)
+        for (Index w : t)
+            ++valence[static_cast<size_t>(w)];
+    vertexFaces_.assign(vertices_.size(), {});
+    for (size_t v = 0; v < vertices_.size(); ++v)
+        vertexFaces_[v].reserve(static_cast<size_t>(valence[v]));
+    if (halfedges) {
+        halfedgeFace_ = *halfedges;
+        for (Index f = 0; f < faceCount(); ++f)
+            for (Index w : faces_[f])
+                vertexFaces_[w].push_back(f);
+    } else {
+        halfedgeFace_.clear();
+        halfedgeFace_.reserve(3 * faces_.size());
+        for (Index f = 0; f < faceCount(); ++f)
+            attachFace(f);
+    }
 }
 
 Index ConsistentMesh::addFace(const Triangle& t, int phase) {
@@ -49,8 +85,7 @@ Index ConsistentMesh::addFace(const Triangle& t, int phase) {
 void ConsistentMesh::attachFace(Index f) {
     const Triangle& t = faces_[f];
     for (int i = 0; i < 3; ++i) {
-        const auto [it, inserted] = halfedgeFace_.emplace(key(t[i], t[(i + 1) % 3]), f);
-        if (!inserted)
+        if (!halfedgeFace_.insert(key(t[i], t[(i + 1) % 3]), f))
             throw std::logic_error("ConsistentMesh: non-manifold or inconsistently oriented edge");
         vertexFaces_[t[i]].push_back(f);
     }
@@ -59,16 +94,13 @@ void ConsistentMesh::attachFace(Index f) {
 void ConsistentMesh::detachFace(Index f) {
     const Triangle& t = faces_[f];
     for (int i = 0; i < 3; ++i) {
-        const auto it = halfedgeFace_.find(key(t[i], t[(i + 1) % 3]));
-        if (it != halfedgeFace_.end() && it->second == f)
-            halfedgeFace_.erase(it);
+        halfedgeFace_.erase(key(t[i], t[(i + 1) % 3]), f);
         std::erase(vertexFaces_[t[i]], f);
     }
 }
 
 Index ConsistentMesh::faceOfHalfedge(Index a, Index b) const {
-    const auto it = halfedgeFace_.find(key(a, b));
-    return it == halfedgeFace_.end() ? kInvalidIndex : it->second;
+    return halfedgeFace_.find(key(a, b));
 }
 
 std::vector<std::array<Index, 2>> ConsistentMesh::edges() const {
@@ -107,6 +139,13 @@ bool ConsistentMesh::onDomainEdge(const Preimage& p, int edge) const {
     }
 }
 
+bool ConsistentMesh::onAnyDomainEdge(const Preimage& p) const {
+    for (int e = 0; e < cornerCount(p.face); ++e)
+        if (onDomainEdge(p, e))
+            return true;
+    return false;
+}
+
 bool ConsistentMesh::insideWithTolerance(const Preimage& p) const {
     const double t = tolerance_;
     if (surface_->isQuad(p.face))
@@ -128,8 +167,20 @@ Preimage ConsistentMesh::clampIntoFace(Preimage p) const {
 // Appendix B: a point on a shared domain edge (or corner) has one preimage
 // in each face around it; walking across the edges it lies on collects them
 // all (the one-ring of a domain corner, or the two faces of an edge).
-std::vector<Preimage> ConsistentMesh::equivalents(const Preimage& p) const {
-    std::vector<Preimage> out{p};
+void ConsistentMesh::Preimages::push_back(const Preimage& p) {
+    if (heap_.empty() && size_ < kInline) {
+        inline_[static_cast<size_t>(size_++)] = p;
+        return;
+    }
+    if (heap_.empty())
+        heap_.assign(inline_.begin(), inline_.end());
+    heap_.push_back(p);
+    ++size_;
+}
+
+ConsistentMesh::Preimages ConsistentMesh::equivalents(const Preimage& p) const {
+    Preimages out;
+    out.push_back(p);
     for (size_t i = 0; i < out.size(); ++i) {
         const Preimage q = out[i];
         for (int e = 0; e < cornerCount(q.face); ++e) {
@@ -147,7 +198,7 @@ std::vector<Preimage> ConsistentMesh::equivalents(const Preimage& p) const {
     return out;
 }
 
-std::optional<Vec2> ConsistentMesh::inChart(const std::vector<Preimage>& reps, Index face) const {
+std::optional<Vec2> ConsistentMesh::inChart(PreimageSpan reps, Index face) const {
     for (const Preimage& r : reps)
         if (r.face == face)
             return Vec2(r.u, r.v);
@@ -162,7 +213,28 @@ std::optional<Vec2> ConsistentMesh::inChart(const std::vector<Preimage>& reps, I
 
 std::optional<Preimage> ConsistentMesh::interpolate(const Preimage& a, const Preimage& b,
                                                     double t) const {
-    const std::vector<Preimage> ra = equivalents(a), rb = equivalents(b);
+    // Same face: the first pair the search below tries (each list starts
+    // with the preimage itself), without building the lists.
+    if (a.face == b.face)
+        return clampIntoFace({a.face, (1.0 - t) * a.u + t * b.u, (1.0 - t) * a.v + t * b.v});
+    const Preimages ra = equivalents(a), rb = equivalents(b);
+    return interpolateIn(span(ra), span(rb), t);
+}
+
+void ConsistentMesh::interpolate(const Preimage& a, const Preimage& b, std::span<const double> t,
+                                 std::span<std::optional<Preimage>> out) const {
+    if (a.face == b.face) {
+        for (size_t i = 0; i < t.size(); ++i)
+            out[i] = interpolate(a, b, t[i]);
+        return;
+    }
+    const Preimages ra = equivalents(a), rb = equivalents(b);
+    for (size_t i = 0; i < t.size(); ++i)
+        out[i] = interpolateIn(span(ra), span(rb), t[i]);
+}
+
+std::optional<Preimage> ConsistentMesh::interpolateIn(PreimageSpan ra, PreimageSpan rb,
+                                                      double t) const {
     // Both preimages in one face: plain interpolation.
     for (const Preimage& x : ra)
         for (const Preimage& y : rb)
@@ -191,12 +263,24 @@ std::optional<Preimage> ConsistentMesh::interpolate(const Preimage& a, const Pre
     return std::nullopt; // no common chart: the caller cancels (appendix B)
 }
 
-std::vector<std::array<Vec2, 3>>
-ConsistentMesh::chartCoordinates(const std::array<Preimage, 3>& p) const {
-    const std::array<std::vector<Preimage>, 3> reps{equivalents(p[0]), equivalents(p[1]),
-                                                    equivalents(p[2])};
-    std::vector<std::array<Vec2, 3>> out;
+template <typename Visit>
+void ConsistentMesh::forEachChart(const std::array<Preimage, 3>& p, Visit visit) const {
+    // Three preimages inside one face, on none of its edges: that face is
+    // the only common chart (equivalents() would return each alone).
+    if (p[0].face == p[1].face && p[1].face == p[2].face && !onAnyDomainEdge(p[0]) &&
+        !onAnyDomainEdge(p[1]) && !onAnyDomainEdge(p[2])) {
+        visit(
+            std::array<Vec2, 3>{Vec2(p[0].u, p[0].v), Vec2(p[1].u, p[1].v), Vec2(p[2].u, p[2].v)});
+        return;
+    }
+    const std::array<Preimages, 3> reps{equivalents(p[0]), equivalents(p[1]), equivalents(p[2])};
+    forEachChart(std::array<PreimageSpan, 3>{span(reps[0]), span(reps[1]), span(reps[2])}, visit);
+}
+
+template <typename Visit>
+void ConsistentMesh::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit visit) const {
     // Every domain face holding all three preimages is a faithful chart.
+    bool any = false;
     for (const Preimage& chart : reps[0]) {
         std::array<Vec2, 3> c;
         int found = 0;
@@ -207,19 +291,22 @@ ConsistentMesh::chartCoordinates(const std::array<Preimage, 3>& p) const {
                     ++found;
                     break;
                 }
-        if (found == 3)
-            out.push_back(c);
+        if (found == 3) {
+            visit(c);
+            any = true;
+        }
     }
-    if (!out.empty())
-        return out;
+    if (any)
+        return;
     // Otherwise every face's chart extended across its edges (appendix B)
     // that holds all three.
-    std::vector<Index> tried;
+    Preimages tried;
     for (const auto& candidates : reps)
         for (const Preimage& chart : candidates) {
-            if (std::find(tried.begin(), tried.end(), chart.face) != tried.end())
+            if (std::any_of(tried.begin(), tried.end(),
+                            [&](const Preimage& x) { return x.face == chart.face; }))
                 continue;
-            tried.push_back(chart.face);
+            tried.push_back(chart);
             std::array<Vec2, 3> c;
             bool all = true;
             for (int i = 0; i < 3 && all; ++i) {
@@ -229,8 +316,14 @@ ConsistentMesh::chartCoordinates(const std::array<Preimage, 3>& p) const {
                     c[i] = *x;
             }
             if (all)
-                out.push_back(c);
+                visit(c);
         }
+}
+
+std::vector<std::array<Vec2, 3>>
+ConsistentMesh::chartCoordinates(const std::array<Preimage, 3>& p) const {
+    std::vector<std::array<Vec2, 3>> out;
+    forEachChart(p, [&](const std::array<Vec2, 3>& c) { out.push_back(c); });
     return out;
 }
 
@@ -238,13 +331,82 @@ ConsistentMesh::chartCoordinates(const std::array<Preimage, 3>& p) const {
 // agree exactly, so the orientation is the worst over every common chart:
 // independent of the corners' order, and a fold in any chart counts.
 std::optional<int> ConsistentMesh::parameterOrientation(const std::array<Preimage, 3>& p) const {
-    const auto charts = chartCoordinates(p);
-    if (charts.empty())
-        return std::nullopt;
+    bool any = false;
     int worst = 1;
-    for (const auto& c : charts)
+    forEachChart(p, [&](const std::array<Vec2, 3>& c) {
+        any = true;
         worst = std::min(worst, orientation2d(c[0], c[1], c[2]));
+    });
+    if (!any)
+        return std::nullopt;
     return worst;
+}
+
+std::vector<std::optional<int>> ConsistentMesh::parameterOrientations() const {
+    const VertexPreimages& table = *vertexPreimages();
+    std::vector<std::optional<int>> out(faces_.size());
+    tbb::parallel_for(size_t(0), faces_.size(), [&](size_t f) {
+        const Triangle& t = faces_[f];
+        const std::array<PreimageSpan, 3> r{table.of(t[0]), table.of(t[1]), table.of(t[2])};
+        bool any = false;
+        int worst = 1;
+        forEachChart(r, [&](const std::array<Vec2, 3>& c) {
+            any = true;
+            worst = std::min(worst, orientation2d(c[0], c[1], c[2]));
+        });
+        if (any)
+            out[f] = worst;
+    });
+    return out;
+}
+
+std::vector<Index> ConsistentMesh::centroidDomainFaces() const {
+    const VertexPreimages& table = *vertexPreimages();
+    std::vector<Index> out(faces_.size());
+    tbb::parallel_for(size_t(0), faces_.size(), [&](size_t f) {
+        const Triangle& t = faces_[f];
+        const Preimage &p0 = vertices_[t[0]].preimage, &p1 = vertices_[t[1]].preimage,
+                       &p2 = vertices_[t[2]].preimage;
+        // interpolate(p0, p1, 0.5), then a third of the way to p2.
+        const std::optional<Preimage> mid =
+            p0.face == p1.face ? interpolate(p0, p1, 0.5)
+                               : interpolateIn(table.of(t[0]), table.of(t[1]), 0.5);
+        if (!mid) {
+            out[f] = kInvalidIndex;
+            return;
+        }
+        std::optional<Preimage> centroid;
+        if (mid->face == p2.face) {
+            centroid = interpolate(*mid, p2, 1.0 / 3.0);
+        } else {
+            const Preimages rm = equivalents(*mid);
+            centroid = interpolateIn(span(rm), table.of(t[2]), 1.0 / 3.0);
+        }
+        out[f] = centroid ? centroid->face : kInvalidIndex;
+    });
+    return out;
+}
+
+std::shared_ptr<const ConsistentMesh::VertexPreimages> ConsistentMesh::vertexPreimages() const {
+    if (preimageTable_ && preimageTable_->offsets.size() == vertices_.size() + 1)
+        return preimageTable_;
+    const size_t nv = vertices_.size();
+    auto built = std::make_shared<VertexPreimages>();
+    VertexPreimages& table = *built;
+    table.offsets.assign(nv + 1, 0);
+    tbb::parallel_for(size_t(0), nv, [&](size_t v) {
+        table.offsets[v + 1] = equivalents(vertices_[v].preimage).size();
+    });
+    for (size_t v = 0; v < nv; ++v)
+        table.offsets[v + 1] += table.offsets[v];
+    table.reps.resize(table.offsets[nv]);
+    tbb::parallel_for(size_t(0), nv, [&](size_t v) {
+        const Preimages e = equivalents(vertices_[v].preimage);
+        std::copy(e.begin(), e.end(),
+                  table.reps.begin() + static_cast<std::ptrdiff_t>(table.offsets[v]));
+    });
+    preimageTable_ = built;
+    return preimageTable_;
 }
 
 std::optional<int> ConsistentMesh::parameterOrientation(Index f) const {
@@ -288,6 +450,7 @@ Index ConsistentMesh::splitFace(Index f, MeshVertex v, int phase) {
 }
 
 void ConsistentMesh::setVertex(Index v, const MeshVertex& x, int phase) {
+    preimageTable_.reset();
     vertices_[v] = x;
     if (phase >= 0) {
         vertices_[v].phase = phase;
@@ -400,6 +563,7 @@ void ConsistentMesh::compact() {
             newIndex[v] = n++;
     if (n == vertexCount())
         return;
+    preimageTable_.reset();
     std::vector<MeshVertex> vertices(n);
     for (Index v = 0; v < vertexCount(); ++v)
         if (newIndex[v] != kInvalidIndex)
@@ -434,6 +598,7 @@ void ConsistentMesh::setEdgeTag(Index a, Index b, int tag) {
 }
 
 void ConsistentMesh::shiftVertex(Index v, const Preimage& p, VertexLabel label, int phase) {
+    preimageTable_.reset();
     MeshVertex moved = evaluate(p);
     moved.label = label;
     moved.provenance = Provenance::Shifted;

@@ -15,6 +15,7 @@
 // contains it. When no such chart exists the interpolation fails (nullopt) and
 // the caller cancels the operation and counts it; nothing is guessed.
 #include "camera/Camera.h"
+#include "contours/consistent/HalfedgeMap.h"
 #include "mesh/TriangleMesh.h"
 #include "surface/SmoothSurface.h"
 
@@ -22,6 +23,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -71,6 +73,7 @@ public:
     Index vertexCount() const { return static_cast<Index>(vertices_.size()); }
     Index faceCount() const { return static_cast<Index>(faces_.size()); }
     const MeshVertex& vertex(Index v) const { return vertices_[v]; }
+    const std::vector<MeshVertex>& vertices() const { return vertices_; }
     const Triangle& face(Index f) const { return faces_[f]; }
     int facePhase(Index f) const { return facePhase_[f]; }
     const std::vector<Index>& vertexFaces(Index v) const { return vertexFaces_[v]; }
@@ -81,6 +84,15 @@ public:
     // Building (initialization and reloading a snapshot).
     Index addVertex(const MeshVertex& v);
     Index addFace(const Triangle& t, int phase);
+    void reserve(Index vertices, Index faces);
+    // The whole mesh at once, for reloading a snapshot: the same mesh as
+    // addVertex() for every vertex then addFace() for every face in order
+    // (vertexFaces() in increasing face order). `halfedges`, when given, is
+    // halfedges() of a mesh with exactly these faces (copied instead of
+    // rebuilt). Replaces everything but the edge tags.
+    void assign(std::vector<MeshVertex> vertices, std::vector<Triangle> faces,
+                std::vector<int> facePhase, const HalfedgeMap* halfedges);
+    const HalfedgeMap& halfedges() const { return halfedgeFace_; }
 
     // The face holding the directed edge a -> b, or kInvalidIndex.
     Index faceOfHalfedge(Index a, Index b) const;
@@ -90,6 +102,14 @@ public:
 
     // Appendix B: u(t) = (1 - t) u_a + t u_b in a common chart.
     std::optional<Preimage> interpolate(const Preimage& a, const Preimage& b, double t) const;
+    // The same for several t (out[i] at t[i]): the charts of a and b are
+    // found once.
+    void interpolate(const Preimage& a, const Preimage& b, std::span<const double> t,
+                     std::span<std::optional<Preimage>> out) const;
+    // Per face, the domain face holding its centroid: u(1/3) from the
+    // midpoint of corners 0-1 to corner 2 (interpolate() twice),
+    // kInvalidIndex without a common chart. Every face at once.
+    std::vector<Index> centroidDomainFaces() const;
     // The three preimages' coordinates in every common chart: the domain
     // faces holding all three, or else the faces whose chart extended across
     // their edges holds all three; empty when there is none.
@@ -99,6 +119,9 @@ public:
     // common charts, or nullopt when the corners have no common chart.
     std::optional<int> parameterOrientation(const std::array<Preimage, 3>& p) const;
     std::optional<int> parameterOrientation(Index f) const;
+    // parameterOrientation(f) for every face, each vertex's preimages found
+    // once (faster than face by face; same results).
+    std::vector<std::optional<int>> parameterOrientations() const;
 
     // Edge split (§6, Fig. 16a and 16c): a vertex `v` (already evaluated) is
     // inserted on edge a-b, and both faces on it are split in two. Returns the
@@ -146,6 +169,27 @@ public:
     // The immutable mesh a snapshot publishes (positions f(u_i)).
     std::shared_ptr<const TriangleMesh> toTriangleMesh() const;
 
+    // Every vertex's preimages in every domain face around it (appendix B),
+    // flattened: vertex v's are reps[offsets[v] .. offsets[v + 1]). Used by
+    // the loops over every face (parameterOrientations(),
+    // centroidDomainFaces()); computed on first use and kept until a vertex
+    // is added, moved or renumbered. Not safe to call from several threads
+    // at once (it fills the cache).
+    struct VertexPreimages {
+        std::vector<size_t> offsets;
+        std::vector<Preimage> reps;
+        std::span<const Preimage> of(Index v) const {
+            const auto i = static_cast<size_t>(v);
+            return {reps.data() + offsets[i], offsets[i + 1] - offsets[i]};
+        }
+    };
+    std::shared_ptr<const VertexPreimages> vertexPreimages() const;
+    // Reuses a table computed for a mesh with the same vertex preimages
+    // (reloading a snapshot).
+    void adoptVertexPreimages(std::shared_ptr<const VertexPreimages> table) {
+        preimageTable_ = std::move(table);
+    }
+
 private:
     std::shared_ptr<const SmoothSurface> surface_;
     Camera camera_;
@@ -154,8 +198,9 @@ private:
     std::vector<Triangle> faces_;
     std::vector<int> facePhase_;
     std::vector<std::vector<Index>> vertexFaces_;
-    std::unordered_map<std::uint64_t, Index> halfedgeFace_;
+    HalfedgeMap halfedgeFace_;
     std::unordered_map<std::uint64_t, int> edgeTags_;
+    mutable std::shared_ptr<const VertexPreimages> preimageTable_;
 
     static std::uint64_t key(Index a, Index b) {
         return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
@@ -173,13 +218,43 @@ private:
     void detachFace(Index f);
     int cornerCount(Index domainFace) const { return surface_->isQuad(domainFace) ? 4 : 3; }
     bool onDomainEdge(const Preimage& p, int edge) const;
+    bool onAnyDomainEdge(const Preimage& p) const;
     bool insideWithTolerance(const Preimage& p) const;
     Preimage clampIntoFace(Preimage p) const;
+    // A few preimages without a heap allocation in the common case (a domain
+    // corner of valence <= kInline); the hot loops call equivalents() for
+    // every interpolation and every face orientation.
+    class Preimages {
+    public:
+        static constexpr int kInline = 12;
+        void push_back(const Preimage& p);
+        size_t size() const { return static_cast<size_t>(size_); }
+        const Preimage& operator[](size_t i) const { return data()[i]; }
+        const Preimage* begin() const { return data(); }
+        const Preimage* end() const { return data() + size_; }
+
+    private:
+        const Preimage* data() const { return heap_.empty() ? inline_.data() : heap_.data(); }
+        std::array<Preimage, kInline> inline_;
+        std::vector<Preimage> heap_;
+        int size_ = 0;
+    };
     // Every preimage of the same surface point (one per domain face around a
     // domain edge or corner the point lies on), p first.
-    std::vector<Preimage> equivalents(const Preimage& p) const;
+    Preimages equivalents(const Preimage& p) const;
+    using PreimageSpan = std::span<const Preimage>;
+    static PreimageSpan span(const Preimages& p) { return {p.begin(), p.size()}; }
+    // interpolate() given both preimages' equivalents().
+    std::optional<Preimage> interpolateIn(PreimageSpan ra, PreimageSpan rb, double t) const;
     // p expressed in the chart of `face` (p's face, or an edge neighbour).
-    std::optional<Vec2> inChart(const std::vector<Preimage>& reps, Index face) const;
+    std::optional<Vec2> inChart(PreimageSpan reps, Index face) const;
+    // Calls visit(coordinates) for every common chart of the three
+    // preimages, in the order chartCoordinates() lists them; reps are their
+    // equivalents().
+    template <typename Visit>
+    void forEachChart(const std::array<PreimageSpan, 3>& reps, Visit visit) const;
+    template <typename Visit>
+    void forEachChart(const std::array<Preimage, 3>& p, Visit visit) const;
 };
 
 } // namespace contour::consistent

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <set>
 #include <stdexcept>
+#include <tbb/parallel_for.h>
 #include <unordered_set>
 
 namespace contour::consistent {
@@ -39,6 +41,43 @@ template <typename T> const std::vector<T>* optionalValues(const Snapshot& s, co
     return f ? std::get_if<std::vector<T>>(&f->values) : nullptr;
 }
 
+// What publish() leaves in Snapshot::methodState: the evaluated vertices
+// (f(u), n(u), g and the radial curvature at every preimage) and the
+// half-edge table, so that the next phase and the post-conditions need not
+// evaluate the surface again nor rehash every edge (most of a phase's time
+// on large meshes). Tied to the mesh and preimage fields it was published
+// with (held, so their addresses cannot be reused).
+struct PublishedVertices final : MethodState {
+    std::shared_ptr<const TriangleMesh> mesh;
+    std::shared_ptr<const Field> preimageFace, preimageUv;
+    std::vector<MeshVertex> vertices;
+    HalfedgeMap halfedges;
+    std::shared_ptr<const ConsistentMesh::VertexPreimages> preimages;
+};
+
+std::shared_ptr<const Field> fieldPtr(const Snapshot& s, const char* name) {
+    const auto it = s.fields.find(name);
+    return it == s.fields.end() ? nullptr : it->second;
+}
+
+const PublishedVertices* publishedVertices(const Snapshot& s) {
+    const auto* p = dynamic_cast<const PublishedVertices*>(s.methodState.get());
+    if (!p || p->mesh != s.mesh || p->preimageFace != fieldPtr(s, fields::kPreimageFace) ||
+        p->preimageUv != fieldPtr(s, fields::kPreimageUv) ||
+        static_cast<Index>(p->vertices.size()) != s.mesh->vertexCount())
+        return nullptr;
+    return p;
+}
+
+#ifdef CONTOUR_CHECK_INVARIANTS
+bool sameBits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool sameBits(const Vec3& a, const Vec3& b) {
+    return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
+}
+#endif
+
 } // namespace
 
 ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
@@ -54,21 +93,72 @@ ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
     const auto* cusp = optionalValues<int>(s, fields::kCusp);
     const auto* offset = optionalValues<double>(s, fields::kNormalOffset);
     const TriangleMesh& mesh = *s.mesh;
-    for (Index v = 0; v < mesh.vertexCount(); ++v) {
+    const PublishedVertices* published = publishedVertices(s);
+    std::vector<MeshVertex> vertices(static_cast<size_t>(mesh.vertexCount()));
+    tbb::parallel_for(Index(0), mesh.vertexCount(), [&](Index v) {
         const Vec3& p = (*uv)[v];
-        MeshVertex mv = m.evaluate({(*face)[v], p.x(), p.y()});
+        const Preimage preimage{(*face)[v], p.x(), p.y()};
+        const double off = offset ? (*offset)[v] : 0.0;
+        MeshVertex mv;
+        if (published && off == 0.0) {
+            // The published record's surface values at this same preimage
+            // (a vertex off the surface is evaluated again: its published
+            // position was computed with the offset).
+            const MeshVertex& x = published->vertices[v];
+            mv.preimage = preimage;
+            mv.position = x.position;
+            mv.normal = x.normal;
+            mv.g = x.g;
+            mv.radialCurvature = x.radialCurvature;
+#ifdef CONTOUR_CHECK_INVARIANTS
+            const MeshVertex e = m.evaluate(preimage);
+            if (!sameBits(e.position, x.position) || !sameBits(e.normal, x.normal) ||
+                !sameBits(e.g, x.g) || !sameBits(e.radialCurvature, x.radialCurvature))
+                throw std::logic_error("consistent contours: the published vertex " +
+                                       std::to_string(v) +
+                                       " differs from the surface at its preimage");
+#endif
+        } else {
+            mv = m.evaluate(preimage);
+        }
         mv.label = static_cast<VertexLabel>((*label)[v]);
         mv.provenance = static_cast<Provenance>((*prov)[v]);
         mv.phase = (*vphase)[v];
         mv.cusp = cusp && (*cusp)[v] != 0;
-        if (offset && (*offset)[v] != 0.0) {
-            mv.normalOffset = (*offset)[v];
+        if (offset && off != 0.0) {
+            mv.normalOffset = off;
             mv.position += mv.normalOffset * mv.normal;
         }
-        m.addVertex(mv);
+        vertices[static_cast<size_t>(v)] = mv;
+    });
+    m.assign(std::move(vertices),
+             std::vector<Triangle>(mesh.triangles().begin(), mesh.triangles().end()), *fphase,
+             published ? &published->halfedges : nullptr);
+    if (published)
+        m.adoptVertexPreimages(published->preimages);
+#ifdef CONTOUR_CHECK_INVARIANTS
+    if (published) {
+        ConsistentMesh fresh(m.surfacePtr(), m.camera(),
+                             ctx.parameters.getDouble("chart-tolerance"));
+        fresh.assign(m.vertices(), {}, {}, nullptr);
+        const auto& a = *fresh.vertexPreimages();
+        const auto& b = *m.vertexPreimages();
+        bool sameTable = a.offsets == b.offsets && a.reps.size() == b.reps.size();
+        for (size_t i = 0; sameTable && i < a.reps.size(); ++i)
+            sameTable = a.reps[i].face == b.reps[i].face && sameBits(a.reps[i].u, b.reps[i].u) &&
+                        sameBits(a.reps[i].v, b.reps[i].v);
+        if (!sameTable)
+            throw std::logic_error("consistent contours: the published vertex preimages do not "
+                                   "match the snapshot's vertices");
+        bool same = m.halfedges().size() == 3 * static_cast<size_t>(m.faceCount());
+        for (Index f = 0; same && f < m.faceCount(); ++f)
+            for (int i = 0; i < 3; ++i)
+                same = same && m.faceOfHalfedge(m.face(f)[i], m.face(f)[(i + 1) % 3]) == f;
+        if (!same)
+            throw std::logic_error("consistent contours: the published half-edge table does not "
+                                   "match the snapshot's faces");
     }
-    for (Index f = 0; f < mesh.faceCount(); ++f)
-        m.addFace(mesh.triangle(f), (*fphase)[f]);
+#endif
     for (const auto& [name, tag] :
          {std::pair{fields::kCuspEdge, kCuspEdge}, std::pair{fields::kRadialEdge, kRadialEdge}}) {
         const auto* values = optionalValues<int>(s, name);
@@ -178,31 +268,52 @@ Analysis analyse(const ConsistentMesh& m) {
     a.vbo.resize(nf);
     a.consistent.resize(nf);
     a.folded.resize(nf);
-    for (Index f = 0; f < nf; ++f) {
+    a.noChart.resize(nf);
+    const std::vector<std::optional<int>> orientation = m.parameterOrientations();
+    // Per face in parallel (each writes its own slots), counted in order.
+    tbb::parallel_for(Index(0), nf, [&](Index f) {
         const Facing facing = faceFacing(m, f);
         const Vbo vbo = faceVbo(m, f);
         a.facing[f] = static_cast<int>(facing);
         a.vbo[f] = static_cast<int>(vbo);
         a.consistent[f] = isConsistent(vbo, facing) ? 1 : 0;
-        a.inconsistent += a.consistent[f] == 0;
-        if (vbo == Vbo::Undefined && a.undefinedVbo++ == 0)
-            a.firstUndefined = describeFace(m, f);
-        const std::optional<int> o = m.parameterOrientation(f);
+        const std::optional<int>& o = orientation[static_cast<size_t>(f)];
         a.folded[f] = o && *o <= 0 ? 1 : 0;
+        a.noChart[f] = o ? 0 : 1;
+    });
+    for (Index f = 0; f < nf; ++f) {
+        a.inconsistent += a.consistent[f] == 0;
+        if (static_cast<Vbo>(a.vbo[f]) == Vbo::Undefined && a.undefinedVbo++ == 0)
+            a.firstUndefined = describeFace(m, f);
         if (a.folded[f] && a.foldedFaces++ == 0)
             a.firstFolded = describeFace(m, f);
     }
-    for (const auto& [u, v] : m.edges()) {
-        const VertexLabel lu = m.vertex(u).label, lv = m.vertex(v).label;
-        if (static_cast<int>(lu) * static_cast<int>(lv) < 0 && a.fbEdges++ == 0)
-            a.firstFb = "edge " + std::to_string(u) + "-" + std::to_string(v);
-        const Index f0 = m.faceOfHalfedge(u, v), f1 = m.faceOfHalfedge(v, u);
-        if (f0 != kInvalidIndex && f1 != kInvalidIndex &&
-            isDegenerateEdge(lu, lv, static_cast<Vbo>(a.vbo[f0]), static_cast<Vbo>(a.vbo[f1])) &&
-            a.degenerate++ == 0)
-            a.firstDegenerate = "edge " + std::to_string(u) + "-" + std::to_string(v) +
-                                " between " + describeFace(m, f0) + " and " + describeFace(m, f1);
-    }
+    // The edges in m.edges() order (faces in order, each edge at its a < b
+    // half-edge or its only one), with the face across each half-edge
+    // looked up in parallel.
+    std::vector<Index> across(3 * static_cast<size_t>(nf));
+    tbb::parallel_for(Index(0), nf, [&](Index f) {
+        const Triangle& t = m.face(f);
+        for (int i = 0; i < 3; ++i)
+            across[3 * static_cast<size_t>(f) + i] = m.faceOfHalfedge(t[(i + 1) % 3], t[i]);
+    });
+    for (Index f = 0; f < nf; ++f)
+        for (int i = 0; i < 3; ++i) {
+            const Index u = m.face(f)[i], v = m.face(f)[(i + 1) % 3];
+            const Index f0 = f, f1 = across[3 * static_cast<size_t>(f) + i];
+            if (!(u < v || f1 == kInvalidIndex))
+                continue;
+            const VertexLabel lu = m.vertex(u).label, lv = m.vertex(v).label;
+            if (static_cast<int>(lu) * static_cast<int>(lv) < 0 && a.fbEdges++ == 0)
+                a.firstFb = "edge " + std::to_string(u) + "-" + std::to_string(v);
+            if (f0 != kInvalidIndex && f1 != kInvalidIndex &&
+                isDegenerateEdge(lu, lv, static_cast<Vbo>(a.vbo[f0]),
+                                 static_cast<Vbo>(a.vbo[f1])) &&
+                a.degenerate++ == 0)
+                a.firstDegenerate = "edge " + std::to_string(u) + "-" + std::to_string(v) +
+                                    " between " + describeFace(m, f0) + " and " +
+                                    describeFace(m, f1);
+        }
     for (Index v = 0; v < m.vertexCount(); ++v) {
         a.contourVertices += m.vertex(v).label == VertexLabel::Contour;
         a.cusps += m.vertex(v).cusp;
@@ -232,20 +343,20 @@ void publish(Snapshot& s, ConsistentMesh& m) {
         cusp[v] = x.cusp ? 1 : 0;
         offset[v] = x.normalOffset;
     }
-    std::vector<int> fphase(m.faceCount()), domainFace(m.faceCount());
-    for (Index f = 0; f < m.faceCount(); ++f) {
+    std::vector<int> fphase(m.faceCount());
+    for (Index f = 0; f < m.faceCount(); ++f)
         fphase[f] = m.facePhase(f);
-        domainFace[f] = faceDomainFace(m, f);
-    }
+    // faceDomainFace() of every face, at once.
+    std::vector<int> domainFace = m.centroidDomainFaces();
     std::vector<int> radialEdge(mesh.edgeCount(), 0), cuspEdge(mesh.edgeCount(), 0);
-    long long radialEdges = 0;
-    for (Index e = 0; e < mesh.edgeCount(); ++e) {
-        const Index h = mesh.edgeHalfedge(e);
-        const int tag = m.edgeTag(mesh.from(h), mesh.to(h));
-        radialEdge[e] = (tag & kRadialEdge) ? 1 : 0;
-        cuspEdge[e] = (tag & kCuspEdge) ? 1 : 0;
-        radialEdges += radialEdge[e];
-    }
+    if (!m.edgeTags().empty())
+        tbb::parallel_for(Index(0), mesh.edgeCount(), [&](Index e) {
+            const Index h = mesh.edgeHalfedge(e);
+            const int tag = m.edgeTag(mesh.from(h), mesh.to(h));
+            radialEdge[e] = (tag & kRadialEdge) ? 1 : 0;
+            cuspEdge[e] = (tag & kCuspEdge) ? 1 : 0;
+        });
+    const long long radialEdges = std::count(radialEdge.begin(), radialEdge.end(), 1);
     Analysis a = analyse(m);
     RadialClassification radial = classifyRadialFaces(m);
     const long long radialFaces = std::count(radial.radial.begin(), radial.radial.end(), 1);
@@ -303,6 +414,14 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     s.setCounter("radial faces", static_cast<double>(radialFaces));
     s.setCounter("standard radial faces", static_cast<double>(standardFaces));
     addStatusNote(s);
+    auto published = std::make_shared<PublishedVertices>();
+    published->mesh = s.mesh;
+    published->preimageFace = fieldPtr(s, fields::kPreimageFace);
+    published->preimageUv = fieldPtr(s, fields::kPreimageUv);
+    published->vertices = m.vertices();
+    published->halfedges = m.halfedges();
+    published->preimages = m.vertexPreimages();
+    s.methodState = std::move(published);
 }
 
 // ------------------------------------------------------------ invariants
@@ -326,15 +445,23 @@ std::vector<InvariantCheck> commonChecks(const PhaseContext& ctx, const Snapshot
     InvariantCheck degenerate = check("no degenerate CC edge (Definition 3)");
     const double tol = ctx.parameters.getDouble("embedding-tolerance") * sceneScale(m);
     const TriangleMesh& mesh = *s.mesh;
-    for (Index v = 0; v < mesh.vertexCount(); ++v) {
+    // The surface evaluated afresh at every preimage (not the published
+    // values reload() reuses), in parallel, reported in order.
+    std::vector<char> off(static_cast<size_t>(mesh.vertexCount()));
+    tbb::parallel_for(Index(0), mesh.vertexCount(), [&](Index v) {
         const MeshVertex& x = m.vertex(v);
         const SurfacePoint sp = m.surface().evaluate(x.preimage);
         const Vec3 expected = sp.position + x.normalOffset * sp.normal();
-        if (!((mesh.position(v) - expected).norm() <= tol))
+        off[static_cast<size_t>(v)] = !((mesh.position(v) - expected).norm() <= tol);
+    });
+    for (Index v = 0; v < mesh.vertexCount(); ++v)
+        if (off[static_cast<size_t>(v)])
             violate(embedding, "vertex " + std::to_string(v));
-    }
     for (Index f = 0; f < m.faceCount(); ++f) {
-        if (!m.parameterOrientation(f))
+        const bool noChart = a.noChart.size() == static_cast<size_t>(m.faceCount())
+                                 ? a.noChart[f] != 0
+                                 : !m.parameterOrientation(f);
+        if (noChart)
             violate(charts, "face " + std::to_string(f));
         else if (a.folded[f])
             violate(folds, describeFace(m, f));

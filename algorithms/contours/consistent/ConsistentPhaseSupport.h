@@ -20,7 +20,10 @@ std::shared_ptr<const SmoothSurface> surfaceFor(const PhaseContext& ctx, const S
 // Bounding-box diagonal of the vertices (tolerances are relative to it).
 double sceneScale(const ConsistentMesh& m);
 
-// The editable mesh of the previous phase's snapshot.
+// The editable mesh of the previous phase's snapshot. The vertices publish()
+// attached to it (Snapshot::methodState) are reused instead of evaluating
+// the surface again; without them every vertex is evaluated from the
+// fields. Both give the same mesh (Debug builds check it).
 ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s);
 
 // "face f: v (domain face, u, v, label, provenance, phase) ..." for notes
@@ -48,6 +51,7 @@ RadialClassification classifyRadialFaces(const ConsistentMesh& m);
 
 struct Analysis {
     std::vector<int> facing, vbo, consistent, folded;
+    std::vector<char> noChart; // 1 where the corners have no common chart
     long long inconsistent = 0, undefinedVbo = 0, fbEdges = 0, degenerate = 0, contourVertices = 0,
               cusps = 0, foldedFaces = 0;
     std::string firstFb, firstUndefined, firstDegenerate, firstFolded;

@@ -3,6 +3,8 @@
 #include "contours/consistent/ConsistentPhases.h"
 #include "surface/SurfaceTessellation.h"
 
+#include <tbb/parallel_for.h>
+
 namespace contour::consistent {
 
 namespace {
@@ -18,11 +20,14 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
     // Step 1-3: subdivide once (the Catmull-Clark domain already is), split
     // quads, move to the limit (SurfaceTessellation at level 1).
     const SurfaceTessellation t = tessellate(*surface, 1);
-    for (const Preimage& p : t.preimages) {
-        MeshVertex v = m.evaluate(p);
-        v.phase = phase;
+    std::vector<MeshVertex> initial(t.preimages.size());
+    tbb::parallel_for(size_t(0), t.preimages.size(), [&](size_t i) {
+        initial[i] = m.evaluate(t.preimages[i]);
+        initial[i].phase = phase;
+    });
+    m.reserve(static_cast<Index>(initial.size()), t.mesh->faceCount());
+    for (const MeshVertex& v : initial)
         m.addVertex(v);
-    }
     for (Index f = 0; f < t.mesh->faceCount(); ++f)
         m.addFace(t.mesh->triangle(f), phase);
     s.setCounter("initial faces", m.faceCount());
@@ -34,29 +39,46 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
     const int samples = ctx.parameters.getInt("crossing-samples");
     long long splits = 0, cancelled = 0;
     const auto edges = m.edges();
-    for (size_t i = 0; i < edges.size(); ++i) {
+    // A split leaves the other edges' endpoints as they were, so every
+    // edge's search only reads the initial vertices: searched in parallel,
+    // applied in edge order.
+    enum class Found : char { None, Split, Cancelled };
+    std::vector<Found> found(edges.size(), Found::None);
+    std::vector<MeshVertex> at(edges.size());
+    std::vector<double> tk(static_cast<size_t>(samples));
+    for (int k = 1; k <= samples; ++k)
+        tk[static_cast<size_t>(k - 1)] = static_cast<double>(k) / (samples + 1);
+    tbb::parallel_for(size_t(0), edges.size(), [&](size_t i) {
         if (i % 4096 == 0)
             ctx.checkCancelled();
         const auto [a, b] = edges[i];
         const VertexLabel la = m.vertex(a).label;
         if (la == VertexLabel::Contour || la != m.vertex(b).label)
-            continue;
-        for (int k = 1; k <= samples; ++k) {
-            const double tk = static_cast<double>(k) / (samples + 1);
-            const std::optional<Preimage> p =
-                m.interpolate(m.vertex(a).preimage, m.vertex(b).preimage, tk);
+            return;
+        std::vector<std::optional<Preimage>> along(tk.size());
+        m.interpolate(m.vertex(a).preimage, m.vertex(b).preimage, tk, along);
+        for (const std::optional<Preimage>& p : along) {
             if (!p) {
-                ++cancelled;
-                break;
+                found[i] = Found::Cancelled;
+                return;
             }
             MeshVertex v = m.evaluate(*p);
             if (v.label == la)
                 continue;
             v.provenance = Provenance::Inserted;
-            m.splitEdge(a, b, v, phase);
-            ++splits;
-            break;
+            at[i] = v;
+            found[i] = Found::Split;
+            return;
         }
+    });
+    ctx.checkCancelled();
+    for (size_t i = 0; i < edges.size(); ++i) {
+        if (found[i] == Found::Cancelled)
+            ++cancelled;
+        if (found[i] != Found::Split)
+            continue;
+        m.splitEdge(edges[i][0], edges[i][1], at[i], phase);
+        ++splits;
     }
     publish(s, m);
     s.setCounter("sign-crossing splits", static_cast<double>(splits));
