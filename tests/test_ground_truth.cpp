@@ -220,12 +220,16 @@ void TestGroundTruth::consistentAgainstGroundTruth_data() {
     // fails; the figures themselves are printed.
     QTest::addColumn<int>("minLoopsPercent");
     QTest::addColumn<int>("minCuspsPercent");
+    // Measured (N = 64, 26 + 10 views): loops 100 % on every shape but spot
+    // (31/36); cusps 100 % on sphere, ellipsoid, torus, 50 % bumpy torus,
+    // 19 % spot, 83 % bob (the paper's corner test misses cusp pairs inside
+    // one face; see test_consistent_cusps for cusp-search-subdivision).
     QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100;
     QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100;
-    QTest::newRow("torus") << QString("torus") << 16 << 0 << 0;
-    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 0 << 0;
-    QTest::newRow("spot") << QString("spot") << 0 << 0 << 0;
-    QTest::newRow("bob") << QString("bob") << 0 << 0 << 0;
+    QTest::newRow("torus") << QString("torus") << 16 << 100 << 100;
+    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 45;
+    QTest::newRow("spot") << QString("spot") << 0 << 80 << 15;
+    QTest::newRow("bob") << QString("bob") << 0 << 100 << 75;
 }
 
 // Issue 4, "Validation against an independent answer": the consistent
@@ -280,8 +284,12 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
           sameLoops, n, 100.0 * sameLoops / n, sameFaces, n, 100.0 * sameFaces / n, sameCusps, n,
           100.0 * sameCusps / n, truthCusps, methodCusps, jaccard / n, both, onlyTruth, onlyMethod,
           seconds / n);
-    QVERIFY2(100 * sameLoops >= minLoopsPercent * n, "fewer views with matching loop counts");
-    QVERIFY2(100 * sameCusps >= minCuspsPercent * n, "fewer views with matching cusp counts");
+    // The floors were measured on the full comparison; the coarser lattice of
+    // unoptimized builds only checks the shapes whose answer is exact.
+    if (kComparisonSamples == 64 || name == "sphere" || name == "ellipsoid") {
+        QVERIFY2(100 * sameLoops >= minLoopsPercent * n, "fewer views with matching loop counts");
+        QVERIFY2(100 * sameCusps >= minCuspsPercent * n, "fewer views with matching cusp counts");
+    }
 }
 
 void TestGroundTruth::timingOnSpot() {
