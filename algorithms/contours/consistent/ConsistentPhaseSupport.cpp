@@ -499,4 +499,22 @@ std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, cons
     return {fb, undefined, root, valence};
 }
 
+std::vector<InvariantCheck> phaseChecks(const PhaseContext& ctx, const Snapshot& s,
+                                        const ConsistentMesh& m, bool afterContourInsertion) {
+    const Analysis a = analyse(m);
+    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
+    if (afterContourInsertion)
+        for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))
+            out.push_back(std::move(c));
+    return out;
+}
+
+InvariantCheck labelsFollowG(const ConsistentMesh& m) {
+    InvariantCheck labels = check("every vertex's label is sign(g) at its preimage");
+    for (Index v = 0; v < m.vertexCount(); ++v)
+        if (m.vertex(v).label != labelFromG(m.vertex(v).g))
+            violate(labels, "vertex " + std::to_string(v));
+    return labels;
+}
+
 } // namespace contour::consistent

@@ -79,6 +79,13 @@ std::vector<InvariantCheck> commonChecks(const PhaseContext& ctx, const Snapshot
 std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, const ConsistentMesh& m,
                                                    const Analysis& a);
 
+// commonChecks, and from contour insertion on also contourInsertionChecks,
+// of the mesh m reloaded from s.
+std::vector<InvariantCheck> phaseChecks(const PhaseContext& ctx, const Snapshot& s,
+                                        const ConsistentMesh& m, bool afterContourInsertion);
+// Before contour insertion: every vertex's label is sign(g) at its preimage.
+InvariantCheck labelsFollowG(const ConsistentMesh& m);
+
 // The notes every snapshot of the method carries about what is missing.
 void addStatusNote(Snapshot& s);
 

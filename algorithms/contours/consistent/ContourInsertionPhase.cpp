@@ -116,10 +116,7 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
 
 std::vector<InvariantCheck> checkContourInsertion(const PhaseContext& ctx, const Snapshot& s) {
     const ConsistentMesh m = reload(ctx, s);
-    const Analysis a = analyse(m);
-    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
-    for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))
-        out.push_back(std::move(c));
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, true);
     return out;
 }
 

@@ -429,13 +429,8 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
 
 std::vector<InvariantCheck> checkCuspDetection(const PhaseContext& ctx, const Snapshot& s) {
     const ConsistentMesh m = reload(ctx, s);
-    const Analysis a = analyse(m);
-    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
-    InvariantCheck labels = check("every vertex's label is sign(g) at its preimage");
-    for (Index v = 0; v < m.vertexCount(); ++v)
-        if (m.vertex(v).label != labelFromG(m.vertex(v).g))
-            violate(labels, "vertex " + std::to_string(v));
-    out.push_back(labels);
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, false);
+    out.push_back(labelsFollowG(m));
     InvariantCheck edges = check("every cusp edge is an interior FB edge (§6.2 d, Fig. 18b)");
     for (const auto& [k, tag] : m.edgeTags()) {
         if (!(tag & kCuspEdge))

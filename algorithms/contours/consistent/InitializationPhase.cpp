@@ -91,13 +91,8 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
 
 std::vector<InvariantCheck> checkInitialization(const PhaseContext& ctx, const Snapshot& s) {
     const ConsistentMesh m = reload(ctx, s);
-    const Analysis a = analyse(m);
-    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
-    InvariantCheck labels = check("every vertex's label is sign(g) at its preimage");
-    for (Index v = 0; v < m.vertexCount(); ++v)
-        if (m.vertex(v).label != labelFromG(m.vertex(v).g))
-            violate(labels, "vertex " + std::to_string(v));
-    out.push_back(labels);
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, false);
+    out.push_back(labelsFollowG(m));
     return out;
 }
 

@@ -20,16 +20,14 @@ void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& wh
 std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Snapshot& s,
                                                bool radialOnSurface) {
     const ConsistentMesh m = reload(ctx, s);
-    const Analysis a = analyse(m);
-    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
-    for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))
-        out.push_back(std::move(c));
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, true);
     if (radialOnSurface && ctx.parameters.has("radial-root-tolerance"))
         out.push_back(radialEdgeCheck(ctx, m));
     InvariantCheck monotone = check("the phase did not increase the inconsistent faces");
     const double before = s.counter("inconsistent faces before", -1.0);
-    if (before >= 0.0 && static_cast<double>(a.inconsistent) > before)
-        violate(monotone, std::to_string(a.inconsistent) + " inconsistent faces after, " +
+    const long long after = static_cast<long long>(inconsistentFaces(m).size());
+    if (before >= 0.0 && static_cast<double>(after) > before)
+        violate(monotone, std::to_string(after) + " inconsistent faces after, " +
                               std::to_string(static_cast<long long>(before)) + " before");
     out.push_back(monotone);
     return out;

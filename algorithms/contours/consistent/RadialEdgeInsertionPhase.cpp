@@ -484,10 +484,7 @@ void runRadialEdgeInsertion(const PhaseContext& ctx, Snapshot& s) {
 
 std::vector<InvariantCheck> checkRadialEdgeInsertion(const PhaseContext& ctx, const Snapshot& s) {
     const ConsistentMesh m = reload(ctx, s);
-    const Analysis a = analyse(m);
-    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
-    for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))
-        out.push_back(std::move(c));
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, true);
     out.push_back(radialEdgeCheck(ctx, m));
     InvariantCheck labels =
         check("every vertex radial edge insertion added is labelled sign(g) (F or B), never C");

@@ -452,10 +452,7 @@ void runRadialFlips(const PhaseContext& ctx, Snapshot& s) {
 
 std::vector<InvariantCheck> checkRadialFlips(const PhaseContext& ctx, const Snapshot& s) {
     const ConsistentMesh m = reload(ctx, s);
-    const Analysis a = analyse(m);
-    std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
-    for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))
-        out.push_back(std::move(c));
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, true);
     out.push_back(radialEdgeCheck(ctx, m));
     InvariantCheck more = check("radial flips never decrease the number of standard radial "
                                 "triangles (§6.3 h)");
