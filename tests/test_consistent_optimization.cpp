@@ -133,9 +133,9 @@ private slots:
         // margin (see the qInfo lines for the figures themselves).
         QTest::addColumn<double>("ceilingPercent");
         QTest::addRow("sphere") << QString("sphere") << 0.005;
-        QTest::addRow("torus") << QString("torus") << 0.33;
+        QTest::addRow("torus") << QString("torus") << 0.30;
         QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.21;
-        QTest::addRow("spot") << QString("spot") << 0.42;
+        QTest::addRow("spot") << QString("spot") << 0.40;
     }
     void optimizationOverTheProtocol() {
         QFETCH(QString, shapeName);

@@ -9,7 +9,9 @@
 #include "contours/consistent/RadialTriangles.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <unordered_map>
 
 namespace contour::consistent {
 
@@ -23,7 +25,57 @@ struct ExtensionSettings {
 
 struct ExtensionStats {
     long long crossings = 0, candidates = 0, rejected = 0, flips = 0, unconverged = 0;
+    // Why samples were not taken: q would change side, no fewer
+    // inconsistent faces, undefined VBO or degenerate CC edge, parameter
+    // fold, appendix C, a face turned over in 3D.
+    long long sideChange = 0, noGain = 0, labels = 0, param = 0, appendixC = 0, turned = 0;
+    long long pairs = 0, pairMoves = 0;
+    std::array<long long, 4>
+        pairRejected{}; // VBO/degenerate, param fold, appendix C, 3D // two radial ends (Fig. 16f)
 };
+
+// Zero crossings of v's one-ring outer boundary in the edit's faces (C
+// vertices plus edges between F and B), the quantity of appendix C rule 3.
+int ringZeroCrossings(const LocalEdit& e, Index v) {
+    int crossings = 0;
+    std::vector<Index> ringContour;
+    for (const Triangle& t : e.faces()) {
+        const auto it = std::find(t.begin(), t.end(), v);
+        if (it == t.end())
+            continue;
+        const int i = static_cast<int>(it - t.begin());
+        const Index t1 = t[(i + 1) % 3], t2 = t[(i + 2) % 3];
+        crossings +=
+            static_cast<int>(e.vertex(t1).label) * static_cast<int>(e.vertex(t2).label) < 0;
+        for (Index w : {t1, t2})
+            if (e.vertex(w).label == VertexLabel::Contour &&
+                std::find(ringContour.begin(), ringContour.end(), w) == ringContour.end())
+                ringContour.push_back(w);
+    }
+    return crossings + static_cast<int>(ringContour.size());
+}
+
+// Appendix C for the far end v of a radial edge moved along its radial
+// curve (label kept): rules 1 and 4 as LocalEdit::shiftable, and rule 3 as
+// the appendix words it, "creates no X": a one-ring that already had more
+// than two zero crossings before the edit (q next to two C vertices of the
+// contour and an FB-free crossing, common at the far ends of radial edges)
+// may keep them, as long as the edit adds none. LocalEdit::shiftable alone
+// rejected most Fig. 16f moves for a count the move does not change.
+bool extensionShiftable(const ConsistentMesh& m, const LocalEdit& before, const LocalEdit& after,
+                        Index v) {
+    if (after.shiftable(v))
+        return true;
+    const MeshVertex& x = after.vertex(v);
+    if (x.label == VertexLabel::Contour || x.cusp)
+        return false;
+    for (const Triangle& t : after.faces())
+        if (std::find(t.begin(), t.end(), v) != t.end())
+            for (Index w : t)
+                if (w != v && !m.interpolate(x.preimage, after.vertex(w).preimage, 0.5))
+                    return false;
+    return ringZeroCrossings(after, v) <= std::max(2, ringZeroCrossings(before, v));
+}
 
 class Extender {
 public:
@@ -51,28 +103,34 @@ public:
         return out;
     }
 
-    // One radial edge p-q: every inconsistent face q-x-y around q whose
-    // opposite edge x-y crosses p's radial plane; the radial curve is
-    // sampled in that face and in the face y-x-z across x-y, and q moves to
-    // the sample that removes the most inconsistent faces (with the flip of
-    // x-y, or without it), ties to the best minimum Bank-Smith quality.
+    // One radial edge p-q: every face q-x-y around q whose opposite edge
+    // x-y crosses p's radial plane (the radial curve's continuation beyond
+    // q); the radial curve is sampled in that face and in the face y-x-z
+    // across x-y, and q moves to the sample that removes the most
+    // inconsistent faces of its star (with the flip of x-y, or without it),
+    // ties to the best minimum Bank-Smith quality. The face need not be
+    // inconsistent itself: in Fig. 16f the inconsistent face lies beside the
+    // radial curve, between two radial ends close to the contour, and is
+    // fixed by moving q further out (the strip widens).
     bool extend(Index p, Index q) {
-        const MeshVertex& qv = m_.vertex(q);
-        if (qv.cusp || m_.isBoundaryVertex(q))
-            return false;
-        for (Index w : m_.neighbours(q))
-            if (w != p && m_.edgeTag(q, w) != kNoTag)
-                return false;
-        if (m_.edgeTag(p, q) != kRadialEdge)
+        if (!movable(p, q))
             return false;
         const std::vector<Index> star = m_.vertexFaces(q);
-        for (Index f : star) {
+        // Inconsistent faces first (the paper's case), then the others.
+        std::vector<Index> order;
+        for (Index f : star)
+            if (!faceIsConsistent(m_, f))
+                order.push_back(f);
+        for (Index f : star)
             if (faceIsConsistent(m_, f))
-                continue;
+                order.push_back(f);
+        for (Index f : order) {
             Triangle t = m_.face(f);
             while (t[0] != q)
                 std::rotate(t.begin(), t.begin() + 1, t.end());
             const Index x = t[1], y = t[2];
+            if (x == p || y == p)
+                continue;
             const double hx = h(p, m_.vertex(x).position), hy = h(p, m_.vertex(y).position);
             if (!(hx * hy < 0.0))
                 continue;
@@ -81,6 +139,76 @@ public:
                 return true;
         }
         return false;
+    }
+
+    // q is the far end of radial edge p-q and may slide along p's radial
+    // curve: not a cusp, not on the boundary, on no other tagged edge.
+    bool movable(Index p, Index q) const {
+        if (m_.vertex(q).cusp || m_.isBoundaryVertex(q) || m_.edgeTag(p, q) != kRadialEdge)
+            return false;
+        for (Index w : m_.neighbours(q))
+            if (w != p && m_.edgeTag(q, w) != kNoTag)
+                return false;
+        return true;
+    }
+
+    // Fig. 16f with two radial ends: an inconsistent face q1-q2-y between
+    // the far ends of two radial edges p1-q1 and p2-q2 close to the contour
+    // (a thin strip) is often fixed only when both ends move out together;
+    // each alone leaves the face (or its neighbour) inconsistent. Both slide
+    // along their radial curves (samples in the star face the curve enters
+    // beyond q), keeping the pair that removes the most inconsistent faces
+    // of the two stars, with the same checks as a single move.
+    bool extendPair(Index p1, Index q1, Index p2, Index q2) {
+        const std::vector<MeshVertex> s1 = outwardSamples(p1, q1), s2 = outwardSamples(p2, q2);
+        if (s1.empty() || s2.empty())
+            return false;
+        ++stats.pairs;
+        std::vector<Index> star = m_.vertexFaces(q1);
+        for (Index f : m_.vertexFaces(q2))
+            if (std::find(star.begin(), star.end(), f) == star.end())
+                star.push_back(f);
+        LocalEdit before(m_), edit(m_);
+        before.addFaces(star);
+        std::vector<char> turned(star.size());
+        for (size_t i = 0; i < star.size(); ++i)
+            turned[i] = before.turnedOver(before.faces()[i]);
+        const LocalScore plain = before.score();
+        int best1 = -1, best2 = -1;
+        LocalScore bestScore;
+        for (size_t i = 0; i < s1.size(); ++i)
+            for (size_t j = 0; j < s2.size(); ++j) {
+                edit.clear();
+                edit.addFaces(star);
+                edit.moveVertex(q1, s1[i]);
+                edit.moveVertex(q2, s2[j]);
+                LocalScore trial = edit.score();
+                trial.inconsistent -= plain.inconsistent;
+                if (trial.inconsistent >= 0 || (best1 >= 0 && !betterScore(trial, bestScore)))
+                    continue;
+                int reason = !edit.labelsValid()      ? 0
+                             : !edit.parameterValid() ? 1
+                             : !extensionShiftable(m_, before, edit, q1) ||
+                                     !extensionShiftable(m_, before, edit, q2)
+                                 ? 2
+                                 : -1;
+                for (size_t k = 0; reason < 0 && k < star.size(); ++k)
+                    if (!turned[k] && edit.turnedOver(edit.faces()[k]))
+                        reason = 3;
+                if (reason >= 0) {
+                    ++stats.pairRejected[reason];
+                    continue;
+                }
+                best1 = static_cast<int>(i);
+                best2 = static_cast<int>(j);
+                bestScore = trial;
+            }
+        if (best1 < 0)
+            return false;
+        m_.setVertex(q1, s1[best1], phase_);
+        m_.setVertex(q2, s2[best2], phase_);
+        ++stats.pairMoves;
+        return true;
     }
 
 private:
@@ -119,6 +247,43 @@ private:
         }
         ++stats.unconverged;
         return std::nullopt;
+    }
+
+    // Samples of p's radial curve beyond q, in the face q-x-y of q's star
+    // whose opposite edge it crosses (lines parallel to x-y, as in
+    // tryMoves), evaluated, on q's side of the contour.
+    std::vector<MeshVertex> outwardSamples(Index p, Index q) {
+        std::vector<MeshVertex> out;
+        const VertexLabel label = m_.vertex(q).label;
+        for (Index f : m_.vertexFaces(q)) {
+            Triangle t = m_.face(f);
+            while (t[0] != q)
+                std::rotate(t.begin(), t.begin() + 1, t.end());
+            const Index x = t[1], y = t[2];
+            if (x == p || y == p)
+                continue;
+            if (!(h(p, m_.vertex(x).position) * h(p, m_.vertex(y).position) < 0.0))
+                continue;
+            const Preimage &uq = m_.vertex(q).preimage, &ux = m_.vertex(x).preimage,
+                           &uy = m_.vertex(y).preimage;
+            for (int k = 1; k <= set_.samples; ++k) {
+                const double s = static_cast<double>(k) / set_.samples;
+                const auto a = m_.interpolate(uq, ux, s), b = m_.interpolate(uq, uy, s);
+                if (!a || !b)
+                    continue;
+                const auto r = root(p, *a, *b);
+                if (!r)
+                    continue;
+                MeshVertex v = m_.evaluate(*r);
+                if (v.label != label)
+                    continue;
+                v.provenance = Provenance::Wiggled;
+                v.phase = phase_;
+                out.push_back(v);
+            }
+            break;
+        }
+        return out;
     }
 
     bool tryMoves(Index p, Index q, Index f, Index x, Index y) {
@@ -177,8 +342,10 @@ private:
         for (const Preimage& r : roots) {
             MeshVertex v = m_.evaluate(r);
             // q stays on its side of the contour (its radial edge's side).
-            if (v.label != label)
+            if (v.label != label) {
+                ++stats.sideChange;
                 continue;
+            }
             ++stats.candidates;
             v.provenance = Provenance::Wiggled;
             v.phase = phase_;
@@ -196,11 +363,24 @@ private:
                 edit.moveVertex(q, v);
                 LocalScore trial = edit.score();
                 trial.inconsistent -= flip ? flipped.inconsistent : plain.inconsistent;
-                if (trial.inconsistent >= 0 || (best && !betterScore(trial, bestScore)))
+                if (trial.inconsistent >= 0 || (best && !betterScore(trial, bestScore))) {
+                    stats.noGain += trial.inconsistent >= 0;
                     continue;
-                bool ok = edit.labelsValid() && edit.parameterValid() && edit.shiftable(q);
+                }
+                bool ok = true;
+                if (!edit.labelsValid()) {
+                    ++stats.labels;
+                    ok = false;
+                } else if (!edit.parameterValid()) {
+                    ++stats.param;
+                    ok = false;
+                } else if (!extensionShiftable(m_, before, edit, q)) {
+                    ++stats.appendixC;
+                    ok = false;
+                }
                 // No face turns over in 3D: the star's faces one by one, the
                 // two faces of the flip against the two they replace.
+                const bool checksOk = ok;
                 int newTurned = 0;
                 size_t i = 0;
                 for (size_t j = 0; ok && j < star.size(); ++j) {
@@ -212,6 +392,8 @@ private:
                 for (; ok && i < edit.faces().size(); ++i)
                     newTurned += edit.turnedOver(edit.faces()[i]);
                 ok = ok && newTurned <= turnedFlip;
+                if (!ok && checksOk)
+                    ++stats.turned;
                 if (!ok) {
                     ++stats.rejected;
                     continue;
@@ -265,6 +447,27 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
             ++tally.tried;
             accepted += ext.extend(p, q);
         }
+        // Faces still inconsistent with two movable radial ends: both move,
+        // once single moves stopped improving (pair sampling is the costly
+        // part, and single moves are preferred).
+        std::unordered_map<Index, Index> nearEnd; // far end q -> its C end p
+        if (accepted == 0)
+            for (const auto& [p, q] : ext.candidates())
+                if (ext.movable(p, q))
+                    nearEnd.emplace(q, p);
+        for (Index f : nearEnd.empty() ? std::vector<Index>{} : inconsistentFaces(m)) {
+            ctx.checkCancelled();
+            if (f >= static_cast<Index>(m.faceCount()) || faceIsConsistent(m, f))
+                continue;
+            std::vector<Index> ends;
+            for (Index v : m.face(f))
+                if (nearEnd.count(v))
+                    ends.push_back(v);
+            if (ends.size() < 2 || nearEnd[ends[0]] == nearEnd[ends[1]])
+                continue;
+            ++tally.tried;
+            accepted += ext.extendPair(nearEnd[ends[0]], ends[0], nearEnd[ends[1]], ends[1]);
+        }
         tally.accepted += accepted;
         if (accepted == 0)
             break;
@@ -277,7 +480,22 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("radial curve samples", static_cast<double>(ext.stats.candidates));
     s.setCounter("samples rejected (fold, appendix C, VBO or degenerate edge)",
                  static_cast<double>(ext.stats.rejected));
+    s.setCounter("samples on the other side of the contour",
+                 static_cast<double>(ext.stats.sideChange));
+    s.setCounter("moves without fewer inconsistent faces", static_cast<double>(ext.stats.noGain));
+    s.setCounter("rejected: undefined VBO or degenerate CC edge",
+                 static_cast<double>(ext.stats.labels));
+    s.setCounter("rejected: parameter fold", static_cast<double>(ext.stats.param));
+    s.setCounter("rejected: appendix C", static_cast<double>(ext.stats.appendixC));
+    s.setCounter("rejected: face turned over in 3D", static_cast<double>(ext.stats.turned));
     s.setCounter("flips", static_cast<double>(ext.stats.flips));
+    s.setCounter("face with two radial ends: pairs sampled", static_cast<double>(ext.stats.pairs));
+    const char* reasons[] = {"undefined VBO or degenerate CC edge", "parameter fold", "appendix C",
+                             "face turned over in 3D"};
+    for (int r = 0; r < 4; ++r)
+        s.setCounter(std::string("face with two radial ends: rejected: ") + reasons[r],
+                     static_cast<double>(ext.stats.pairRejected[r]));
+    s.setCounter("face with two radial ends: both moved", static_cast<double>(ext.stats.pairMoves));
     s.setCounter("unconverged radial roots", static_cast<double>(ext.stats.unconverged));
     if (m.edgeTags().empty() || s.counter("radial edges", 0.0) == 0.0)
         s.notes.push_back("radial edge extension: the mesh has no radial edges (radial edge "
@@ -314,10 +532,12 @@ void addRadialExtensionPhase(Method& m) {
     m.phases.push_back(
         {"radial-extension",
          "§6.4 Radial Edge Extension (Fig. 15i, 16f): for a radial edge p-q whose far end q "
-         "touches an inconsistent face whose opposite edge crosses p's radial plane, q slides "
-         "along p's radial curve (sampled in that face and the one beyond) and the opposite "
-         "edge is flipped, keeping the move that removes the most inconsistent faces; no fold, "
-         "appendix C respected; sweeps while the count decreases.",
+         "touches an inconsistent face, q slides along p's radial curve beyond q (sampled in "
+         "the face of q's star whose opposite edge crosses p's radial plane and the one beyond) "
+         "and that opposite edge may be flipped, keeping the move that removes the most "
+         "inconsistent faces; then faces still inconsistent between two radial ends move both "
+         "ends together; no fold, appendix C (rule 3 as \"creates no X\"); sweeps while the "
+         "count decreases.",
          runRadialExtension, checkRadialExtension});
 }
 
