@@ -19,6 +19,7 @@
 #include "mesh/TriangleMesh.h"
 #include "surface/SmoothSurface.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -41,6 +42,13 @@ enum EdgeTag : int {
 };
 
 VertexLabel labelFromG(double g);
+
+// The triangle's corners rotated so that v comes first (same orientation).
+inline Triangle rotatedTo(Triangle t, Index v) {
+    while (t[0] != v)
+        std::rotate(t.begin(), t.begin() + 1, t.end());
+    return t;
+}
 
 struct MeshVertex {
     Preimage preimage;

@@ -13,12 +13,6 @@ namespace contour::consistent {
 
 namespace {
 
-Triangle rotatedTo(Triangle t, Index v) {
-    while (t[0] != v)
-        std::rotate(t.begin(), t.begin() + 1, t.end());
-    return t;
-}
-
 // Why a side of a C vertex got no radial edge (each failed attempt is
 // counted under exactly one reason).
 enum class Outcome {

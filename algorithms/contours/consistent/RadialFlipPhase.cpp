@@ -12,12 +12,6 @@ namespace contour::consistent {
 
 namespace {
 
-Triangle rotatedTo(Triangle t, Index v) {
-    while (t[0] != v)
-        std::rotate(t.begin(), t.begin() + 1, t.end());
-    return t;
-}
-
 class RadialFlipper {
 public:
     RadialFlipper(ConsistentMesh& mesh, int phase, bool fallback, bool keepConsistency,

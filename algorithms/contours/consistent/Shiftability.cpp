@@ -5,16 +5,6 @@
 
 namespace contour::consistent {
 
-namespace {
-
-Triangle rotatedTo(Triangle t, Index v) {
-    while (t[0] != v)
-        std::rotate(t.begin(), t.begin() + 1, t.end());
-    return t;
-}
-
-} // namespace
-
 bool shiftKeepsParameterOrientation(const ConsistentMesh& m, Index v, const Preimage& p) {
     for (Index f : m.vertexFaces(v)) {
         const Triangle t = rotatedTo(m.face(f), v);
