@@ -8,8 +8,9 @@
 
 namespace contour {
 
-// Methods that run today: "mesh", "interpolated" and "consistent" (partial:
-// initialization and contour insertion of Bénard 2014, see its description).
+// Methods that run today: "mesh", "interpolated" and "consistent" (every
+// sub-phase of Bénard 2014 §6; some inconsistent faces remain, see its
+// description).
 const std::vector<Method>& contourMethods();
 const Method* findMethod(const std::string& name);
 

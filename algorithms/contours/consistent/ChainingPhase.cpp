@@ -35,7 +35,13 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("contour generator edges", static_cast<double>(generator.size()));
     s.setCounter("mesh contour edges", static_cast<double>(meshContourEdges));
     publishCurves(ctx, s, edgePolylines(mesh, generator, CurveType::Contour));
-    addStatusNote(s);
+    const double inconsistent = s.counter("inconsistent faces", 0.0);
+    if (inconsistent > 0.0)
+        s.notes.push_back(
+            std::to_string(static_cast<long long>(inconsistent)) + " of " +
+            std::to_string(mesh.faceCount()) +
+            " faces are still inconsistent (the paper reaches about 0.05 %): near them the "
+            "contour generator's topology may differ from the smooth contour's");
 }
 
 // Notes §6.1 item 10: contour-generator vertices have degree 2 except on

@@ -413,7 +413,6 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     s.setCounter("radial edges", static_cast<double>(radialEdges));
     s.setCounter("radial faces", static_cast<double>(radialFaces));
     s.setCounter("standard radial faces", static_cast<double>(standardFaces));
-    addStatusNote(s);
     auto published = std::make_shared<PublishedVertices>();
     published->mesh = s.mesh;
     published->preimageFace = fieldPtr(s, fields::kPreimageFace);

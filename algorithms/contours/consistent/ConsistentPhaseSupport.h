@@ -86,7 +86,5 @@ std::vector<InvariantCheck> phaseChecks(const PhaseContext& ctx, const Snapshot&
 // Before contour insertion: every vertex's label is sign(g) at its preimage.
 InvariantCheck labelsFollowG(const ConsistentMesh& m);
 
-// The notes every snapshot of the method carries about what is missing.
-void addStatusNote(Snapshot& s);
 
 } // namespace contour::consistent
