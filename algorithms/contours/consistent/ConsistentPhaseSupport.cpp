@@ -214,14 +214,18 @@ Index faceDomainFace(const ConsistentMesh& m, Index f) {
     return centroid ? centroid->face : kInvalidIndex;
 }
 
-int inconsistentFacesAround(const ConsistentMesh& m, const std::vector<Index>& vertices) {
+std::vector<Index> facesAround(const ConsistentMesh& m, const std::vector<Index>& vertices) {
     std::vector<Index> faces;
     for (Index v : vertices)
         faces.insert(faces.end(), m.vertexFaces(v).begin(), m.vertexFaces(v).end());
     std::sort(faces.begin(), faces.end());
     faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+}
+
+int inconsistentFacesAround(const ConsistentMesh& m, const std::vector<Index>& vertices) {
     int n = 0;
-    for (Index f : faces)
+    for (Index f : facesAround(m, vertices))
         n += !faceIsConsistent(m, f);
     return n;
 }

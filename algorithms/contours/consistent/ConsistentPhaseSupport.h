@@ -37,6 +37,8 @@ bool faceIsConsistent(const ConsistentMesh& m, Index f);
 // The domain face holding the face's centroid (appendix B interpolation),
 // kInvalidIndex when its corners have no common chart.
 Index faceDomainFace(const ConsistentMesh& m, Index f);
+// The faces around the given vertices, each once, sorted.
+std::vector<Index> facesAround(const ConsistentMesh& m, const std::vector<Index>& vertices);
 // Inconsistent faces among the faces around the given vertices (each face
 // once): the local objective of the optimization phases (§6.4).
 int inconsistentFacesAround(const ConsistentMesh& m, const std::vector<Index>& vertices);
@@ -85,6 +87,5 @@ std::vector<InvariantCheck> phaseChecks(const PhaseContext& ctx, const Snapshot&
                                         const ConsistentMesh& m, bool afterContourInsertion);
 // Before contour insertion: every vertex's label is sign(g) at its preimage.
 InvariantCheck labelsFollowG(const ConsistentMesh& m);
-
 
 } // namespace contour::consistent

@@ -250,13 +250,8 @@ private:
 
     // Standard radial triangles among the faces around `vertices`.
     int standardAround(const std::vector<Index>& vertices) const {
-        std::vector<Index> faces;
-        for (Index v : vertices)
-            faces.insert(faces.end(), m_.vertexFaces(v).begin(), m_.vertexFaces(v).end());
-        std::sort(faces.begin(), faces.end());
-        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
         int n = 0;
-        for (Index f : faces)
+        for (Index f : facesAround(m_, vertices))
             n += isStandardRadial(m_, m_.face(f));
         return n;
     }
