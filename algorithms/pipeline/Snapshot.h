@@ -5,6 +5,8 @@
 // the exporters read fields by name (FieldNames.h), so they work for every
 // method through this one type.
 #include "mesh/PolygonMesh.h"
+#include "pipeline/Curve.h"
+#include "pipeline/ViewGraph.h"
 
 #include <map>
 #include <memory>
@@ -24,34 +26,6 @@ struct Field {
     const std::vector<double>* scalars() const { return std::get_if<std::vector<double>>(&values); }
     const std::vector<int>* labels() const { return std::get_if<std::vector<int>>(&values); }
     const std::vector<Vec3>* vectors() const { return std::get_if<std::vector<Vec3>>(&values); }
-};
-
-enum class CurveType { Contour, Boundary, SurfaceIntersection };
-const char* toString(CurveType type);
-
-// A point of a curve, with the mesh element it lies on: a vertex (mesh
-// contours) or a point at parameter t along an edge (interpolated contours).
-struct CurvePoint {
-    Vec3 position;
-    Index vertex = kInvalidIndex;
-    Index edge = kInvalidIndex;
-    double t = 0.0;
-};
-
-enum class SegmentSource { MeshEdge, Face };
-
-struct Polyline {
-    CurveType type = CurveType::Contour;
-    bool closed = false;
-    std::vector<CurvePoint> points;
-    // Per segment i (points i -> i+1, and last -> first when closed): the mesh
-    // element it comes from, an edge or a face according to `source`.
-    SegmentSource source = SegmentSource::MeshEdge;
-    std::vector<Index> segmentElement;
-
-    size_t segmentCount() const {
-        return points.size() < 2 ? 0 : closed ? points.size() : points.size() - 1;
-    }
 };
 
 struct Counter {
@@ -80,6 +54,9 @@ struct Snapshot {
     std::shared_ptr<const TriangleMesh> mesh;
     std::map<std::string, std::shared_ptr<const Field>> fields;
     std::shared_ptr<const std::vector<Polyline>> curves;
+    // The curves cut where their visibility may change, with each piece's
+    // visibility and how it was decided; set by a method's visibility phase.
+    std::shared_ptr<const ViewGraph> viewGraph;
 
     std::vector<Counter> counters;
     std::vector<InvariantCheck> invariants;

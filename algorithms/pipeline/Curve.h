@@ -1,0 +1,38 @@
+#pragma once
+// Curves on the working mesh: what the contour methods extract and the view
+// graph cuts into visibility pieces.
+#include "mesh/Types.h"
+
+#include <vector>
+
+namespace contour {
+
+enum class CurveType { Contour, Boundary, SurfaceIntersection };
+const char* toString(CurveType type);
+
+// A point of a curve, with the mesh element it lies on: a vertex (mesh
+// contours) or a point at parameter t along an edge (interpolated contours).
+struct CurvePoint {
+    Vec3 position;
+    Index vertex = kInvalidIndex;
+    Index edge = kInvalidIndex;
+    double t = 0.0;
+};
+
+enum class SegmentSource { MeshEdge, Face };
+
+struct Polyline {
+    CurveType type = CurveType::Contour;
+    bool closed = false;
+    std::vector<CurvePoint> points;
+    // Per segment i (points i -> i+1, and last -> first when closed): the mesh
+    // element it comes from, an edge or a face according to `source`.
+    SegmentSource source = SegmentSource::MeshEdge;
+    std::vector<Index> segmentElement;
+
+    size_t segmentCount() const {
+        return points.size() < 2 ? 0 : closed ? points.size() : points.size() - 1;
+    }
+};
+
+} // namespace contour
