@@ -98,7 +98,7 @@ private slots:
         QVERIFY(r.snapshot(2).field("facing") == afterFacing.field("facing"));
         QVERIFY(r.current().curves && !r.current().curves->empty());
         QVERIFY(r.back());
-        QCOMPARE(r.completedPhases(), 3);
+        QCOMPARE(r.completedPhases(), static_cast<int>(m.phases.size()) - 1);
         r.reset();
         QCOMPARE(r.completedPhases(), 0);
         QVERIFY(!r.back());
@@ -119,8 +119,14 @@ private slots:
         r.back();
         r.runToEnd();
         QCOMPARE(r.current().counters.size(), counters.size());
-        for (size_t i = 0; i < counters.size(); ++i)
+        // Timings and cache hits are not results: they may differ.
+        for (size_t i = 0; i < counters.size(); ++i) {
+            const std::string& name = counters[i].name;
+            if (name.find("seconds") != std::string::npos ||
+                name.find("cached") != std::string::npos)
+                continue;
             QCOMPARE(r.current().counters[i].value, counters[i].value);
+        }
     }
 
     void badParametersAndCameraAreRejected() {

@@ -2,6 +2,7 @@
 
 #include "SceneColors.h"
 
+#include <QFontMetricsF>
 #include <QPaintEvent>
 #include <QPainter>
 #include <algorithm>
@@ -11,6 +12,10 @@ namespace contour {
 namespace {
 
 constexpr double kMargin = 12.0;
+constexpr double kGlyphSize = 9.0;       // node glyphs, in screen pixels
+constexpr double kVisibleWidth = 2.0;    // screen pixels
+constexpr double kHiddenWidth = 1.5;     // screen pixels
+constexpr double kSimplifiedWidth = 1.0; // screen pixels
 
 QColor curveColor(CurveType type) {
     switch (type) {
@@ -22,6 +27,54 @@ QColor curveColor(CurveType type) {
         return sceneColors::kIntersection.toQColor();
     }
     return Qt::black;
+}
+
+QPen linePen(const QColor& color, double width, Qt::PenStyle style) {
+    QPen pen(color, width, style);
+    pen.setCosmetic(true); // width in screen pixels whatever the scale
+    pen.setJoinStyle(Qt::RoundJoin);
+    pen.setCapStyle(style == Qt::SolidLine ? Qt::RoundCap : Qt::FlatCap);
+    return pen;
+}
+
+// A node glyph centred on `c` (widget coordinates), `size` pixels across,
+// filled with `color` and outlined in dark grey so that light colours show
+// on the white image.
+void drawGlyph(QPainter& painter, const QPointF& c, NodeGlyph glyph, const QColor& color,
+               double size) {
+    const double r = 0.5 * size;
+    painter.setPen(QPen(QColor(40, 40, 40), 1.0));
+    painter.setBrush(color);
+    switch (glyph) {
+    case NodeGlyph::Square:
+        painter.drawRect(QRectF(c.x() - r, c.y() - r, size, size));
+        break;
+    case NodeGlyph::Diamond:
+        painter.drawPolygon(QPolygonF({c + QPointF(0, -1.3 * r), c + QPointF(1.3 * r, 0),
+                                       c + QPointF(0, 1.3 * r), c + QPointF(-1.3 * r, 0)}));
+        break;
+    case NodeGlyph::Triangle:
+        painter.drawPolygon(QPolygonF(
+            {c + QPointF(-1.2 * r, r), c + QPointF(1.2 * r, r), c + QPointF(0, -1.3 * r)}));
+        break;
+    case NodeGlyph::TriangleDown:
+        painter.drawPolygon(QPolygonF(
+            {c + QPointF(-1.2 * r, -r), c + QPointF(1.2 * r, -r), c + QPointF(0, 1.3 * r)}));
+        break;
+    case NodeGlyph::Circle:
+        painter.drawEllipse(c, r, r);
+        break;
+    case NodeGlyph::Ring:
+        painter.setPen(QPen(color, 2.5));
+        painter.setBrush(Qt::NoBrush);
+        painter.drawEllipse(c, r, r);
+        break;
+    case NodeGlyph::Cross:
+        painter.setPen(QPen(color, 2.5));
+        painter.drawLine(c + QPointF(-r, -r), c + QPointF(r, r));
+        painter.drawLine(c + QPointF(-r, r), c + QPointF(r, -r));
+        break;
+    }
 }
 
 } // namespace
@@ -63,12 +116,27 @@ void ImageView2D::setScene(const Snapshot& snapshot, const Camera& camera) {
             paths_.push_back(std::move(projected));
         }
     }
-    caption_ = QStringLiteral("%1 — %2 contour, %3 boundary curves")
-                   .arg(QString::fromStdString(snapshot.phaseName))
-                   .arg(contours)
-                   .arg(boundaries);
-    if (others > 0)
-        caption_ += QStringLiteral(", %1 intersections").arg(others);
+    graph_ = snapshot.viewGraph;
+    if (graph_) {
+        long long visible = 0, hidden = 0;
+        for (const ViewChain& chain : graph_->chains) {
+            visible += chainState(chain) == ChainState::Visible;
+            hidden += chainState(chain) == ChainState::Hidden;
+        }
+        caption_ = QStringLiteral("%1 — view graph: %2 visible, %3 hidden chains, %4 nodes")
+                       .arg(QString::fromStdString(snapshot.phaseName))
+                       .arg(visible)
+                       .arg(hidden)
+                       .arg(graph_->nodes.size());
+    } else {
+        caption_ = QStringLiteral("%1 — %2 contour, %3 boundary curves")
+                       .arg(QString::fromStdString(snapshot.phaseName))
+                       .arg(contours)
+                       .arg(boundaries);
+        if (others > 0)
+            caption_ += QStringLiteral(", %1 intersections").arg(others);
+    }
+    rebuildViewGraph();
     update();
 }
 
@@ -76,7 +144,123 @@ void ImageView2D::clearScene() {
     camera_.reset();
     paths_.clear();
     caption_.clear();
+    graph_.reset();
+    rebuildViewGraph();
     update();
+}
+
+void ImageView2D::setShowHiddenCurves(bool show) {
+    showHidden_ = show;
+    rebuildViewGraph();
+    update();
+}
+
+void ImageView2D::setShowSimplifiedCurves(bool show) {
+    showSimplified_ = show;
+    rebuildViewGraph();
+    update();
+}
+
+void ImageView2D::setShowNodes(bool show) {
+    showNodes_ = show;
+    rebuildViewGraph();
+    update();
+}
+
+void ImageView2D::setChainColoring(ChainColoring coloring) {
+    coloring_ = coloring;
+    update();
+}
+
+void ImageView2D::rebuildViewGraph() {
+    chains_.clear();
+    nodes_.clear();
+    drawn_ = Counts();
+    if (!graph_ || !camera_)
+        return;
+    const Camera& camera = *camera_;
+    std::vector<DrawnChain> visible, hidden, simplified;
+    for (Index c = 0; c < static_cast<Index>(graph_->chains.size()); ++c) {
+        const ViewChain& chain = graph_->chains[c];
+        const ChainState state = chainState(chain);
+        if ((state == ChainState::Hidden && !showHidden_) ||
+            (state == ChainState::Simplified && !showSimplified_))
+            continue;
+        // The builder's pixels when it gave one per point, else the 3D points
+        // projected; a segment is drawn when both ends are in front of the eye.
+        const bool hasImage =
+            chain.image.size() == chain.points.size() && chain.depth.size() == chain.points.size();
+        DrawnChain drawn{c, state, {}};
+        bool penDown = false;
+        int segments = 0;
+        for (size_t i = 0; i < chain.points.size(); ++i) {
+            Vec2 pixel;
+            double depth;
+            if (hasImage) {
+                pixel = chain.image[i];
+                depth = chain.depth[i];
+            } else {
+                const ProjectedPoint p = camera.project(chain.points[i]);
+                pixel = p.pixel;
+                depth = p.depth;
+            }
+            if (!(depth > 0.0) || !pixel.allFinite()) {
+                penDown = false;
+                continue;
+            }
+            const QPointF q(pixel.x(), pixel.y());
+            if (penDown) {
+                drawn.path.lineTo(q);
+                ++segments;
+            } else {
+                drawn.path.moveTo(q);
+            }
+            penDown = true;
+        }
+        if (segments == 0)
+            continue;
+        switch (state) {
+        case ChainState::Visible:
+            ++drawn_.visible;
+            visible.push_back(std::move(drawn));
+            break;
+        case ChainState::Hidden:
+            ++drawn_.hidden;
+            hidden.push_back(std::move(drawn));
+            break;
+        case ChainState::Simplified:
+            ++drawn_.simplified;
+            simplified.push_back(std::move(drawn));
+            break;
+        }
+    }
+    // Painted in this order: what is visible ends up on top.
+    for (auto* group : {&hidden, &simplified, &visible})
+        for (DrawnChain& d : *group)
+            chains_.push_back(std::move(d));
+
+    if (!showNodes_)
+        return;
+    for (Index n = 0; n < static_cast<Index>(graph_->nodes.size()); ++n) {
+        if (!showHidden_ && nodeIsHidden(*graph_, n))
+            continue;
+        const ProjectedPoint p = camera.project(graph_->nodes[n].position);
+        if (!(p.depth > 0.0) || !p.pixel.allFinite())
+            continue;
+        nodes_.push_back(n);
+        ++drawn_.nodes;
+        ++drawn_.nodesByType[static_cast<size_t>(graph_->nodes[n].type)];
+    }
+}
+
+QColor ImageView2D::chainPenColor(const ViewChain& chain) const {
+    if (chainState(chain) == ChainState::Simplified)
+        return viewGraphColors::kSimplified2D.toQColor();
+    if (coloring_ == ChainColoring::ByChain) {
+        const Index index = static_cast<Index>(&chain - graph_->chains.data());
+        return chainColor(index).toQColor();
+    }
+    return qiColor(chain.qi, sceneColors::kContour2D).toQColor();
 }
 
 QRectF ImageView2D::imageRect() const {
@@ -97,6 +281,137 @@ QPointF ImageView2D::toWidget(const Vec2& imagePixel) const {
     return frame.topLeft() + QPointF(imagePixel.x() * scale, imagePixel.y() * scale);
 }
 
+std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
+    std::vector<LegendEntry> entries;
+    if (!graph_)
+        return entries;
+    // Only what is drawn: the legend explains the picture.
+    std::array<bool, 5> qiShown{}; // unknown, 0, 1, 2, 3+
+    for (const DrawnChain& d : chains_) {
+        const int qi = graph_->chains[d.chain].qi;
+        if (d.state != ChainState::Simplified)
+            qiShown[static_cast<size_t>(std::clamp(qi, -1, 3) + 1)] = true;
+    }
+    if (coloring_ == ChainColoring::ByQi) {
+        if (qiShown[1])
+            entries.push_back({LegendEntry::Line, sceneColors::kContour2D.toQColor(),
+                               NodeGlyph::Square, tr("QI 0 (visible)")});
+        const char* names[] = {"QI 1", "QI 2", "QI 3+"};
+        for (int qi = 1; qi <= 3; ++qi)
+            if (qiShown[static_cast<size_t>(qi + 1)])
+                entries.push_back({LegendEntry::DashedLine,
+                                   qiColor(qi, sceneColors::kContour2D).toQColor(),
+                                   NodeGlyph::Square, tr(names[qi - 1])});
+        if (qiShown[0])
+            entries.push_back({LegendEntry::DashedLine, viewGraphColors::kUnknownQi.toQColor(),
+                               NodeGlyph::Square, tr("QI unknown")});
+    } else {
+        if (drawn_.visible > 0)
+            entries.push_back({LegendEntry::Line, chainColor(0).toQColor(), NodeGlyph::Square,
+                               tr("visible (a colour per chain)")});
+        if (drawn_.hidden > 0)
+            entries.push_back({LegendEntry::DashedLine, chainColor(1).toQColor(), NodeGlyph::Square,
+                               tr("hidden")});
+    }
+    if (drawn_.simplified > 0)
+        entries.push_back({LegendEntry::Line, viewGraphColors::kSimplified2D.toQColor(),
+                           NodeGlyph::Square, tr("simplified away")});
+    for (int t = 0; t < kViewNodeTypeCount; ++t) {
+        if (drawn_.nodesByType[static_cast<size_t>(t)] == 0)
+            continue;
+        const NodeStyle style = nodeStyle(static_cast<ViewNodeType>(t));
+        entries.push_back({LegendEntry::Glyph, style.color.toQColor(), style.glyph,
+                           QStringLiteral("%1 (%2)")
+                               .arg(tr(style.label))
+                               .arg(drawn_.nodesByType[static_cast<size_t>(t)])});
+    }
+    return entries;
+}
+
+QRectF ImageView2D::legendRect() const {
+    const std::vector<LegendEntry> entries = legendEntries();
+    if (entries.empty())
+        return {};
+    const QFontMetricsF metrics(font());
+    double textWidth = 0.0;
+    for (const LegendEntry& e : entries)
+        textWidth = std::max(textWidth, metrics.horizontalAdvance(e.text));
+    const double line = metrics.height() + 2.0;
+    const QSizeF size(textWidth + 42.0, line * static_cast<double>(entries.size()) + 8.0);
+    const QRectF frame = imageRect();
+    return {QPointF(frame.right() - size.width() - 6.0, frame.top() + 6.0), size};
+}
+
+void ImageView2D::paintViewGraph(QPainter& painter, const QRectF& frame) const {
+    painter.save();
+    painter.setClipRect(frame);
+    const double scale = frame.width() / camera_->viewport.width;
+    painter.save();
+    painter.translate(frame.topLeft());
+    painter.scale(scale, scale);
+    painter.setBrush(Qt::NoBrush);
+    for (const DrawnChain& d : chains_) {
+        const ViewChain& chain = graph_->chains[d.chain];
+        switch (d.state) {
+        case ChainState::Visible:
+            painter.setPen(linePen(chainPenColor(chain), kVisibleWidth, Qt::SolidLine));
+            break;
+        case ChainState::Hidden:
+            painter.setPen(linePen(chainPenColor(chain), kHiddenWidth, Qt::DashLine));
+            break;
+        case ChainState::Simplified:
+            painter.setPen(linePen(chainPenColor(chain), kSimplifiedWidth, Qt::SolidLine));
+            break;
+        }
+        painter.drawPath(d.path);
+    }
+    painter.restore();
+    // Glyphs at a fixed screen size, over the chains.
+    for (const Index n : nodes_) {
+        const ViewNode& node = graph_->nodes[n];
+        const NodeStyle style = nodeStyle(node.type);
+        const ProjectedPoint p = camera_->project(node.position);
+        drawGlyph(painter, toWidget(p.pixel), style.glyph, style.color.toQColor(), kGlyphSize);
+    }
+    painter.restore();
+}
+
+void ImageView2D::paintLegend(QPainter& painter) const {
+    const std::vector<LegendEntry> entries = legendEntries();
+    if (entries.empty())
+        return;
+    const QRectF box = legendRect();
+    painter.save();
+    painter.setPen(QPen(QColor(120, 120, 120), 1.0));
+    painter.setBrush(QColor(255, 255, 255, 225));
+    painter.drawRect(box);
+    const QFontMetricsF metrics(font());
+    const double line = metrics.height() + 2.0;
+    double y = box.top() + 4.0;
+    for (const LegendEntry& e : entries) {
+        const double mid = y + 0.5 * line;
+        const QPointF left(box.left() + 6.0, mid), right(box.left() + 32.0, mid);
+        switch (e.kind) {
+        case LegendEntry::Line:
+            painter.setPen(linePen(e.color, kVisibleWidth, Qt::SolidLine));
+            painter.drawLine(left, right);
+            break;
+        case LegendEntry::DashedLine:
+            painter.setPen(linePen(e.color, kHiddenWidth, Qt::DashLine));
+            painter.drawLine(left, right);
+            break;
+        case LegendEntry::Glyph:
+            drawGlyph(painter, 0.5 * (left + right), e.glyph, e.color, kGlyphSize);
+            break;
+        }
+        painter.setPen(QColor(30, 30, 30));
+        painter.drawText(QRectF(box.left() + 38.0, y, box.width() - 40.0, line),
+                         Qt::AlignLeft | Qt::AlignVCenter, e.text);
+        y += line;
+    }
+    painter.restore();
+}
+
 void ImageView2D::paintEvent(QPaintEvent*) {
     QPainter painter(this);
     painter.fillRect(rect(), palette().color(QPalette::Window).darker(115));
@@ -112,20 +427,20 @@ void ImageView2D::paintEvent(QPaintEvent*) {
                      Qt::AlignLeft | Qt::AlignVCenter, caption_);
 
     painter.setRenderHint(QPainter::Antialiasing);
-    painter.save();
-    painter.setClipRect(frame);
-    const double scale = frame.width() / camera_->viewport.width;
-    painter.translate(frame.topLeft());
-    painter.scale(scale, scale);
-    for (const ProjectedCurve& curve : paths_) {
-        QPen pen(curveColor(curve.type), 2.0);
-        pen.setCosmetic(true); // width in screen pixels whatever the scale
-        pen.setJoinStyle(Qt::RoundJoin);
-        pen.setCapStyle(Qt::RoundCap);
-        painter.setPen(pen);
-        painter.drawPath(curve.path);
+    if (graph_) {
+        paintViewGraph(painter, frame);
+    } else {
+        painter.save();
+        painter.setClipRect(frame);
+        const double scale = frame.width() / camera_->viewport.width;
+        painter.translate(frame.topLeft());
+        painter.scale(scale, scale);
+        for (const ProjectedCurve& curve : paths_) {
+            painter.setPen(linePen(curveColor(curve.type), kVisibleWidth, Qt::SolidLine));
+            painter.drawPath(curve.path);
+        }
+        painter.restore();
     }
-    painter.restore();
 
     painter.setPen(QPen(QColor(60, 60, 60), 1.0));
     painter.setBrush(Qt::NoBrush);
@@ -133,6 +448,8 @@ void ImageView2D::paintEvent(QPaintEvent*) {
     painter.drawText(
         frame.adjusted(4, 2, -4, -2), Qt::AlignRight | Qt::AlignBottom,
         QStringLiteral("%1 × %2").arg(camera_->viewport.width).arg(camera_->viewport.height));
+    if (graph_)
+        paintLegend(painter);
 }
 
 } // namespace contour

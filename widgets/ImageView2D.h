@@ -2,11 +2,20 @@
 // The 2D view: the snapshot's curves projected with the analysis camera into
 // its image (Camera::project: x right, y down, origin top-left), fitted into
 // the widget with the image's aspect ratio, the image frame drawn.
+//
+// When the snapshot has a view graph (Snapshot::viewGraph, set by a method's
+// visibility phase) its chains are drawn instead of the raw curves: visible
+// chains solid, hidden ones (QI > 0 or unknown) dashed and optional, chains
+// hidden by topological simplification left out (or very faint, optional),
+// coloured by QI or by chain (ViewGraphStyle.h), with one glyph per node type
+// and a legend of what is drawn.
+#include "ViewGraphStyle.h"
 #include "camera/Camera.h"
 #include "pipeline/Snapshot.h"
 
 #include <QPainterPath>
 #include <QWidget>
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -23,11 +32,37 @@ public:
     void clearScene();
 
     const std::optional<Camera>& camera() const { return camera_; }
+    // The snapshot's raw curves (whether or not a view graph replaces them).
     int curveCount() const { return static_cast<int>(paths_.size()); }
     // Where the analysis camera's image is drawn, in widget coordinates.
     QRectF imageRect() const;
     // Maps a pixel of the analysis camera's image to widget coordinates.
     QPointF toWidget(const Vec2& imagePixel) const;
+
+    // View graph display: choices kept across snapshots.
+    void setShowHiddenCurves(bool show);
+    bool showsHiddenCurves() const { return showHidden_; }
+    void setShowSimplifiedCurves(bool show);
+    bool showsSimplifiedCurves() const { return showSimplified_; }
+    void setShowNodes(bool show);
+    bool showsNodes() const { return showNodes_; }
+    void setChainColoring(ChainColoring coloring);
+    ChainColoring chainColoring() const { return coloring_; }
+
+    // What the next paint draws: whether the view graph replaces the raw
+    // curves, how many of its chains are drawn solid (visible), dashed
+    // (hidden) and faint (simplified away), and how many node glyphs, in all
+    // and per ViewNodeType.
+    bool showsViewGraph() const { return static_cast<bool>(graph_); }
+    int visibleChainsDrawn() const { return drawn_.visible; }
+    int hiddenChainsDrawn() const { return drawn_.hidden; }
+    int simplifiedChainsDrawn() const { return drawn_.simplified; }
+    int nodeGlyphsDrawn() const { return drawn_.nodes; }
+    int nodeGlyphsDrawn(ViewNodeType type) const {
+        return drawn_.nodesByType[static_cast<size_t>(type)];
+    }
+    // The legend's box in widget coordinates (empty without a view graph).
+    QRectF legendRect() const;
 
     QSize sizeHint() const override { return {640, 480}; }
     QSize minimumSizeHint() const override { return {120, 90}; }
@@ -40,10 +75,41 @@ private:
         CurveType type;
         QPainterPath path; // in image pixels
     };
+    struct DrawnChain {
+        Index chain;
+        ChainState state;
+        QPainterPath path; // in image pixels
+    };
+    struct Counts {
+        int visible = 0, hidden = 0, simplified = 0, nodes = 0;
+        std::array<int, kViewNodeTypeCount> nodesByType{};
+    };
+    struct LegendEntry {
+        enum Kind { Line, DashedLine, Glyph } kind;
+        QColor color;
+        NodeGlyph glyph = NodeGlyph::Square;
+        QString text;
+    };
+
+    // Projects the view graph's chains and decides what is drawn.
+    void rebuildViewGraph();
+    QColor chainPenColor(const ViewChain& chain) const;
+    std::vector<LegendEntry> legendEntries() const;
+    void paintViewGraph(QPainter& painter, const QRectF& frame) const;
+    void paintLegend(QPainter& painter) const;
 
     std::optional<Camera> camera_;
     std::vector<ProjectedCurve> paths_;
     QString caption_;
+
+    std::shared_ptr<const ViewGraph> graph_;
+    std::vector<DrawnChain> chains_; // hidden first, then simplified, then visible
+    std::vector<Index> nodes_;       // the nodes drawn
+    Counts drawn_;
+    bool showHidden_ = true;
+    bool showSimplified_ = false;
+    bool showNodes_ = true;
+    ChainColoring coloring_ = ChainColoring::ByQi;
 };
 
 } // namespace contour

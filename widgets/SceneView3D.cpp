@@ -16,6 +16,7 @@
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
 #include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
 
 namespace contour {
 
@@ -28,6 +29,22 @@ void setTableColor(vtkLookupTable* table, vtkIdType index, const SceneColor& col
 void setColor(vtkProperty* property, const SceneColor& color) {
     property->SetColor(color.r, color.g, color.b);
 }
+
+// The name of the RGB colour arrays of the view graph layers.
+constexpr const char* kViewGraphColorArray = "view_graph_colors";
+
+void insertColor(vtkUnsignedCharArray* colors, const SceneColor& c, double scale = 1.0) {
+    const auto byte = [scale](double v) {
+        return static_cast<unsigned char>(std::clamp(v * scale, 0.0, 1.0) * 255.0 + 0.5);
+    };
+    colors->InsertNextTypedTuple(
+        std::array<unsigned char, 3>{byte(c.r), byte(c.g), byte(c.b)}.data());
+}
+
+constexpr int kChainStateCount = 3;
+// Line widths of visible, hidden and simplified chains (ChainState order).
+constexpr std::array<float, kChainStateCount> kChainWidths{4.0f, 2.5f, 1.5f};
+constexpr float kNodeDotSize = 12.0f;
 
 // A system font with Greek letters for the scalar bar's title (κr), which
 // VTK's embedded fonts may lack. Empty when there is none: the text then uses
@@ -234,6 +251,39 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
         overlayRenderer_->AddActor(cusps.actor);
     }
 
+    // View graph: chains on the scene, depth-tested and pulled towards the
+    // viewer like the curves; nodes over everything, like the cusps. Colours
+    // are per cell (chains) or per point (nodes), set by recolourViewGraph().
+    for (int i = 0; i < kChainStateCount; ++i) {
+        ViewGraphLayer& layer = chainLayers_[static_cast<size_t>(i)];
+        layer.mapper->SetScalarModeToUseCellData();
+        layer.mapper->SetColorModeToDirectScalars();
+        layer.mapper->ScalarVisibilityOn();
+        layer.mapper->SetRelativeCoincidentTopologyLineOffsetParameters(-2.0, -60.0);
+        layer.actor->SetMapper(layer.mapper);
+        layer.actor->GetProperty()->SetLineWidth(kChainWidths[static_cast<size_t>(i)]);
+        layer.actor->GetProperty()->LightingOff();
+        layer.actor->VisibilityOff();
+        layer.actor->PickableOff();
+        ren->AddActor(layer.actor);
+    }
+    for (ViewGraphLayer& layer : nodeLayers_) {
+        layer.mapper->SetScalarModeToUsePointData();
+        layer.mapper->SetColorModeToDirectScalars();
+        layer.mapper->ScalarVisibilityOn();
+        layer.actor->SetMapper(layer.mapper);
+        layer.actor->GetProperty()->SetPointSize(kNodeDotSize);
+        layer.actor->GetProperty()->RenderPointsAsSpheresOn();
+        layer.actor->GetProperty()->LightingOff();
+        layer.actor->VisibilityOff();
+        layer.actor->PickableOff();
+    }
+    overlayRenderer_->AddActor(nodeLayers_[0].actor);
+    // Nodes on hidden chains only: with those chains, pulled in front of the
+    // surface they lie on.
+    nodeLayers_[1].mapper->SetRelativeCoincidentTopologyPointOffsetParameter(-120.0);
+    ren->AddActor(nodeLayers_[1].actor);
+
     frustumActor_->SetMapper(frustumMapper_);
     setColor(frustumActor_->GetProperty(), sceneColors::kFrustum);
     frustumActor_->GetProperty()->SetLineWidth(1.5f);
@@ -288,8 +338,8 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
         const std::vector<Polyline>& curves = curves_ ? *curves_ : none;
         curveMapper_->SetInputData(curvesToPolyData(curves));
         curveCount_ = static_cast<int>(curves.size());
-        curveActor_->SetVisibility(curveCount_ > 0);
     }
+    updateViewGraph();
     requestRender();
 }
 
@@ -385,6 +435,8 @@ void SceneView3D::updateColoring() {
     }
     if (meshData_)
         meshData_->Modified();
+    // Visible chains coloured by QI follow the curves' colour.
+    recolourViewGraph();
     if (displayedField_ != previousField || scalarFields_ != previousFields ||
         labelFields_ != previousLabels)
         emit colorFieldsChanged();
@@ -477,6 +529,140 @@ QRect SceneView3D::scalarBarRect() const {
     return QRect(QPoint(left, top), QPoint(right - 1, bottom - 1));
 }
 
+void SceneView3D::updateViewGraph() {
+    const bool had = static_cast<bool>(graph_);
+    const std::shared_ptr<const ViewGraph> graph = meshData_ ? snapshot_.viewGraph : nullptr;
+    const bool changed = graph != graph_;
+    graph_ = graph;
+    const auto setData = [](ViewGraphLayer& layer, vtkSmartPointer<vtkPolyData> poly) {
+        layer.data = std::move(poly);
+        layer.mapper->SetInputData(layer.data ? layer.data.Get()
+                                              : vtkSmartPointer<vtkPolyData>::New().Get());
+    };
+    if (changed) {
+        for (int i = 0; i < kChainStateCount; ++i)
+            setData(chainLayers_[static_cast<size_t>(i)],
+                    graph_ ? viewChainsToPolyData(*graph_, static_cast<ChainState>(i)) : nullptr);
+        for (int hidden = 0; hidden < 2; ++hidden)
+            setData(nodeLayers_[static_cast<size_t>(hidden)],
+                    graph_ ? viewNodesToPolyData(*graph_, hidden != 0) : nullptr);
+    }
+    recolourViewGraph();
+    updateViewGraphVisibility();
+    if (had != static_cast<bool>(graph_))
+        emit overlaysChanged();
+}
+
+void SceneView3D::recolourViewGraph() {
+    if (!graph_)
+        return;
+    // Over a scalar field (which has red in it) visible chains are black,
+    // like the curves.
+    const SceneColor& visible =
+        showsScalar_ ? sceneColors::kContourOverField : sceneColors::kContour3D;
+    for (int i = 0; i < kChainStateCount; ++i) {
+        vtkPolyData* chains = chainLayers_[static_cast<size_t>(i)].data;
+        if (!chains)
+            continue;
+        const auto state = static_cast<ChainState>(i);
+        auto* indices =
+            vtkIntArray::SafeDownCast(chains->GetCellData()->GetArray(kVtkChainIndexArray));
+        auto* qis = vtkIntArray::SafeDownCast(chains->GetCellData()->GetArray(kVtkChainQiArray));
+        auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+        colors->SetName(kViewGraphColorArray);
+        colors->SetNumberOfComponents(3);
+        for (vtkIdType c = 0; c < chains->GetNumberOfLines(); ++c) {
+            if (state == ChainState::Simplified)
+                insertColor(colors, viewGraphColors::kSimplified3D);
+            else if (coloring_ == ChainColoring::ByChain)
+                insertColor(colors, chainColor(indices->GetValue(c)),
+                            state == ChainState::Hidden ? viewGraphColors::kHiddenDarken : 1.0);
+            else
+                insertColor(colors, qiColor(qis->GetValue(c), visible));
+        }
+        chains->GetCellData()->AddArray(colors);
+        chains->GetCellData()->SetActiveScalars(kViewGraphColorArray);
+        chains->Modified();
+    }
+    for (const ViewGraphLayer& layer : nodeLayers_) {
+        vtkPolyData* nodes = layer.data;
+        if (!nodes)
+            continue;
+        auto* types = vtkIntArray::SafeDownCast(nodes->GetPointData()->GetArray(kVtkNodeTypeArray));
+        auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+        colors->SetName(kViewGraphColorArray);
+        colors->SetNumberOfComponents(3);
+        for (vtkIdType n = 0; n < nodes->GetNumberOfPoints(); ++n)
+            insertColor(colors, nodeStyle(static_cast<ViewNodeType>(types->GetValue(n))).color);
+        nodes->GetPointData()->AddArray(colors);
+        nodes->GetPointData()->SetActiveScalars(kViewGraphColorArray);
+        nodes->Modified();
+    }
+}
+
+void SceneView3D::updateViewGraphVisibility() {
+    const bool meshShown = meshActor_->GetVisibility();
+    curveActor_->SetVisibility(meshShown && curveCount_ > 0 && !graph_);
+    for (int i = 0; i < kChainStateCount; ++i)
+        chainLayers_[static_cast<size_t>(i)].actor->SetVisibility(
+            viewGraphChainsShown(static_cast<ChainState>(i)) > 0);
+    for (int hidden = 0; hidden < 2; ++hidden) {
+        const ViewGraphLayer& layer = nodeLayers_[static_cast<size_t>(hidden)];
+        layer.actor->SetVisibility(graph_ && layer.data && showNodes_ && (!hidden || showHidden_) &&
+                                   meshActor_->GetVisibility());
+    }
+}
+
+long long SceneView3D::viewGraphChainsShown(ChainState state) const {
+    const ViewGraphLayer& layer = chainLayers_[static_cast<size_t>(state)];
+    if (!graph_ || !layer.data || !meshActor_->GetVisibility())
+        return 0;
+    if ((state == ChainState::Hidden && !showHidden_) ||
+        (state == ChainState::Simplified && !showSimplified_))
+        return 0;
+    return layer.data->GetNumberOfLines();
+}
+
+long long SceneView3D::viewGraphNodesShown() const {
+    long long shown = 0;
+    for (const ViewGraphLayer& layer : nodeLayers_)
+        if (layer.actor->GetVisibility())
+            shown += layer.data->GetNumberOfVerts();
+    return shown;
+}
+
+vtkPolyData* SceneView3D::viewGraphChainData(ChainState state) const {
+    return chainLayers_[static_cast<size_t>(state)].data;
+}
+
+vtkPolyData* SceneView3D::viewGraphNodeData(bool hidden) const {
+    return nodeLayers_[hidden ? 1 : 0].data;
+}
+
+void SceneView3D::setShowHiddenCurves(bool show) {
+    showHidden_ = show;
+    updateViewGraphVisibility();
+    requestRender();
+}
+
+void SceneView3D::setShowSimplifiedCurves(bool show) {
+    showSimplified_ = show;
+    updateViewGraphVisibility();
+    requestRender();
+}
+
+void SceneView3D::setShowViewGraphNodes(bool show) {
+    showNodes_ = show;
+    updateViewGraphVisibility();
+    requestRender();
+}
+
+void SceneView3D::setChainColoring(ChainColoring coloring) {
+    coloring_ = coloring;
+    recolourViewGraph();
+    requestRender();
+}
+
 long long SceneView3D::displayedFaceCount() const {
     return meshData_ && meshActor_->GetVisibility() ? meshData_->GetNumberOfPolys() : 0;
 }
@@ -495,6 +681,7 @@ void SceneView3D::clearScene() {
     showsFacing_ = false;
     meshActor_->VisibilityOff();
     curveActor_->VisibilityOff();
+    updateViewGraph();
     frustumActor_->VisibilityOff();
     requestRender();
 }

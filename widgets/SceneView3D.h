@@ -7,9 +7,15 @@
 // with a scalar bar), the curves drawn on top as thick lines, the overlays of
 // the consistent method (SceneOverlay) where the snapshot has their fields,
 // and the analysis camera's frustum when this view's own camera differs from
-// it.
+// it. When the snapshot has a view graph (Snapshot::viewGraph) its chains
+// replace the raw curves: visible ones thick and bright, hidden ones thinner
+// and darker (depth-tested like the surface, so orbit to see them), chains
+// simplified away faint and optional, and the nodes as round dots coloured by
+// type (ViewGraphStyle.h): those on a visible chain drawn over everything,
+// those only on hidden chains depth-tested with the hidden chains.
 #include "DivergingColorMap.h"
 #include "SceneColors.h"
+#include "ViewGraphStyle.h"
 #include "VtkOpenGLWidget.h"
 #include "camera/Camera.h"
 #include "pipeline/FieldNames.h"
@@ -103,6 +109,26 @@ public:
     // The overlay's VTK data, or null when it is not available.
     vtkPolyData* overlayData(SceneOverlay overlay) const;
 
+    // View graph display: choices kept across snapshots, applied when the
+    // snapshot has a view graph.
+    bool hasViewGraph() const { return static_cast<bool>(graph_); }
+    void setShowHiddenCurves(bool show);
+    bool showsHiddenCurves() const { return showHidden_; }
+    void setShowSimplifiedCurves(bool show);
+    bool showsSimplifiedCurves() const { return showSimplified_; }
+    void setShowViewGraphNodes(bool show);
+    bool showsViewGraphNodes() const { return showNodes_; }
+    void setChainColoring(ChainColoring coloring);
+    ChainColoring chainColoring() const { return coloring_; }
+    // Chains in `state` drawn now (0 when that layer is off or there is no
+    // view graph), node dots drawn now (both kinds), and their VTK data
+    // (null without a view graph): the nodes on a visible chain, or with
+    // `hidden` those whose chains are all hidden.
+    long long viewGraphChainsShown(ChainState state) const;
+    long long viewGraphNodesShown() const;
+    vtkPolyData* viewGraphChainData(ChainState state) const;
+    vtkPolyData* viewGraphNodeData(bool hidden = false) const;
+
     // The camera the method runs with; drawn as a frustum when it differs
     // from this view's camera.
     void setAnalysisCamera(const Camera& camera);
@@ -142,6 +168,11 @@ private:
     // ones.
     void updateOverlays();
     void updateOverlayVisibility();
+    // Converts the snapshot's view graph when it changed and shows the
+    // chosen layers; recolourViewGraph() sets the colours.
+    void updateViewGraph();
+    void recolourViewGraph();
+    void updateViewGraphVisibility();
 
     vtkNew<vtkPolyDataMapper> meshMapper_;
     vtkNew<vtkActor> meshActor_;
@@ -167,6 +198,22 @@ private:
     // Layer 1 over the scene, sharing its camera: what is drawn over
     // everything (inconsistent outlines, cusps).
     vtkNew<vtkRenderer> overlayRenderer_;
+
+    // View graph layers: visible, hidden, simplified chains (ChainState
+    // order); the nodes on a visible chain (on the overlay renderer) and
+    // the hidden ones (on the scene, depth-tested).
+    struct ViewGraphLayer {
+        vtkNew<vtkPolyDataMapper> mapper;
+        vtkNew<vtkActor> actor;
+        vtkSmartPointer<vtkPolyData> data; // null without a view graph
+    };
+    std::array<ViewGraphLayer, 3> chainLayers_;
+    std::array<ViewGraphLayer, 2> nodeLayers_; // [0] on a visible chain, [1] hidden
+    std::shared_ptr<const ViewGraph> graph_;
+    bool showHidden_ = true;
+    bool showSimplified_ = false;
+    bool showNodes_ = true;
+    ChainColoring coloring_ = ChainColoring::ByQi;
 
     std::shared_ptr<const TriangleMesh> mesh_;
     Snapshot snapshot_;

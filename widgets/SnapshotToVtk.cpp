@@ -9,6 +9,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 
@@ -201,6 +202,55 @@ vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curve
     poly->SetLines(makeCells(offsets, connectivity));
     poly->GetCellData()->AddArray(types);
     poly->GetCellData()->SetActiveScalars(kVtkCurveTypeArray);
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> viewChainsToPolyData(const ViewGraph& graph, ChainState state) {
+    std::vector<Vec3> positions;
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+    auto indices = vtkSmartPointer<vtkIntArray>::New();
+    indices->SetName(kVtkChainIndexArray);
+    auto qis = vtkSmartPointer<vtkIntArray>::New();
+    qis->SetName(kVtkChainQiArray);
+    for (size_t c = 0; c < graph.chains.size(); ++c) {
+        const ViewChain& chain = graph.chains[c];
+        if (chain.points.size() < 2 || chainState(chain) != state)
+            continue;
+        for (const Vec3& p : chain.points) {
+            connectivity.push_back(static_cast<vtkIdType>(positions.size()));
+            positions.push_back(p);
+        }
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+        indices->InsertNextValue(static_cast<int>(c));
+        qis->InsertNextValue(chain.qi);
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(positions));
+    poly->SetLines(makeCells(offsets, connectivity));
+    poly->GetCellData()->AddArray(indices);
+    poly->GetCellData()->AddArray(qis);
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> viewNodesToPolyData(const ViewGraph& graph, bool hidden) {
+    std::vector<Vec3> positions;
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+    auto types = vtkSmartPointer<vtkIntArray>::New();
+    types->SetName(kVtkNodeTypeArray);
+    for (Index n = 0; n < static_cast<Index>(graph.nodes.size()); ++n) {
+        if (nodeIsHidden(graph, n) != hidden)
+            continue;
+        connectivity.push_back(static_cast<vtkIdType>(positions.size()));
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+        positions.push_back(graph.nodes[n].position);
+        types->InsertNextValue(static_cast<int>(graph.nodes[n].type));
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(positions));
+    poly->SetVerts(makeCells(offsets, connectivity));
+    poly->GetPointData()->AddArray(types);
     return poly;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Conversion of a Snapshot's parts to VTK data for the 3D view. Pure data
 // conversion: no rendering and no algorithm runs here.
+#include "ViewGraphStyle.h"
 #include "camera/Camera.h"
 #include "pipeline/Snapshot.h"
 
@@ -58,6 +59,23 @@ vtkSmartPointer<vtkDoubleArray> smoothSurfaceNormals(const Snapshot& snapshot);
 // The curves as polylines (a closed curve repeats its first point) with the
 // cell array kVtkCurveTypeArray holding static_cast<int>(CurveType).
 vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curves);
+
+// The view graph (Snapshot::viewGraph, pipeline/ViewGraph.h). The chains in
+// `state` (ViewGraphStyle.h: visible, hidden, simplified away) as one polyline
+// each through its 3D points (a closed chain already repeats its first
+// point), with the cell arrays kVtkChainIndexArray (the chain's index in the
+// graph) and kVtkChainQiArray (its QI, -1 unknown). Chains with fewer than two
+// points are left out.
+inline constexpr const char* kVtkChainIndexArray = "chain";
+inline constexpr const char* kVtkChainQiArray = "qi";
+vtkSmartPointer<vtkPolyData> viewChainsToPolyData(const ViewGraph& graph, ChainState state);
+
+// One vertex cell per node at its 3D position, in node order, with the point
+// array kVtkNodeTypeArray (static_cast<int>(ViewNodeType)): the nodes whose
+// chains are all hidden (ViewNodeClass::Hidden) when `hidden`, the others
+// otherwise.
+inline constexpr const char* kVtkNodeTypeArray = "node_type";
+vtkSmartPointer<vtkPolyData> viewNodesToPolyData(const ViewGraph& graph, bool hidden);
 
 // Overlays of the consistent method (Bénard 2014, contours/consistent/). Each
 // is null when the snapshot lacks the fields it needs or their sizes do not

@@ -11,6 +11,8 @@
 #include "contours/VertexNormalCache.h"
 #include "mesh/VertexNormals.h"
 #include "pipeline/FieldNames.h"
+#include "visibility/SimplificationPhase.h"
+#include "visibility/VisibilityPhase.h"
 
 #include <cmath>
 #include <limits>
@@ -236,6 +238,8 @@ Method makeInterpolatedContourMethod() {
          "boundaries.",
          chainSegmentsAcrossEdges, checkChains},
     };
+    addVisibilityPhase(m, VisibilityFlavor::Interpolated);
+    addSimplificationPhase(m);
     return m;
 }
 

@@ -8,6 +8,8 @@
 #include "contours/SurfacePhase.h"
 #include "geometry/Predicates.h"
 #include "pipeline/FieldNames.h"
+#include "visibility/SimplificationPhase.h"
+#include "visibility/VisibilityPhase.h"
 
 #include <string>
 #include <tbb/parallel_for.h>
@@ -196,6 +198,8 @@ Method makeMeshContourMethod() {
         {"chaining", "Chain contour edges into polylines through vertices of degree two.",
          chainContourEdges, checkChains},
     };
+    addVisibilityPhase(m, VisibilityFlavor::Mesh);
+    addSimplificationPhase(m);
     return m;
 }
 

@@ -1,7 +1,7 @@
 #include "export/JsonReport.h"
 
-#include "io/AtomicFile.h"
 #include "export/ProjectedCurves.h"
+#include "io/AtomicFile.h"
 
 #include <cmath>
 
@@ -96,6 +96,99 @@ nlohmann::json curvesJson(const Snapshot& snapshot, const Camera& camera) {
     return curvesJson(projectCurves(*snapshot.curves, camera));
 }
 
+namespace {
+// Pixels to 0.01 px: finer than any drawing needs, and a third of the text.
+double roundPixel(double x) {
+    return std::isfinite(x) ? std::round(x * 100.0) / 100.0 : x;
+}
+} // namespace
+
+nlohmann::json viewGraphJson(const ViewGraph& graph) {
+    nlohmann::json chains = nlohmann::json::array();
+    long long visible = 0, hidden = 0, simplified = 0, ambiguous = 0, conflicting = 0;
+    double simplifiedLength = 0.0;
+    for (size_t c = 0; c < graph.chains.size(); ++c) {
+        const ViewChain& chain = graph.chains[c];
+        visible += chain.visible();
+        hidden += !chain.visible() && !chain.simplifiedAway;
+        simplified += chain.simplifiedAway;
+        ambiguous += chain.ambiguous;
+        conflicting += chain.conflict;
+        if (chain.simplifiedAway)
+            simplifiedLength += chain.lengthPixels;
+        long long tested = 0, ambiguousSegments = 0;
+        for (int q : chain.segmentRayQi)
+            tested += q >= 0;
+        for (std::uint8_t a : chain.segmentAmbiguous)
+            ambiguousSegments += a != 0;
+        nlohmann::json points = nlohmann::json::array();
+        for (const Vec2& p : chain.image)
+            points.push_back({roundPixel(p.x()), roundPixel(p.y())});
+        chains.push_back({{"index", c},
+                          {"type", toString(chain.type)},
+                          {"curve", chain.curve},
+                          {"closed", chain.closed},
+                          {"qi", chain.qi},
+                          {"qi_lower_bound", chain.qiLowerBound},
+                          {"rule", toString(chain.decidedBy)},
+                          {"ambiguous", chain.ambiguous},
+                          {"concave", chain.concave},
+                          {"conflict", chain.conflict},
+                          {"ray_qi", chain.rayQi},
+                          {"simplified_away", chain.simplifiedAway},
+                          {"visible", chain.visible()},
+                          {"length_px", chain.lengthPixels},
+                          {"start_node", chain.startNode},
+                          {"end_node", chain.endNode},
+                          {"segments", chain.segmentCount()},
+                          {"ray_tested_segments", tested},
+                          {"ambiguous_segments", ambiguousSegments},
+                          {"points", std::move(points)}});
+    }
+    nlohmann::json nodes = nlohmann::json::array();
+    nlohmann::json byType = nlohmann::json::object();
+    for (size_t n = 0; n < graph.nodes.size(); ++n) {
+        const ViewNode& node = graph.nodes[n];
+        const std::string type = toString(node.type);
+        byType[type] = byType.value(type, 0) + 1;
+        nodes.push_back({{"index", n},
+                         {"type", type},
+                         {"class", toString(graph.nodeClass(static_cast<Index>(n)))},
+                         {"image", {roundPixel(node.image.x()), roundPixel(node.image.y())}},
+                         {"position", vec3(node.position)},
+                         {"mesh_vertex", node.meshVertex},
+                         {"chains", node.chains},
+                         {"near_chains", {node.nearChains[0], node.nearChains[1]}},
+                         {"far_chains", {node.farChains[0], node.farChains[1]}},
+                         {"qi_step", node.qiStep},
+                         {"unreliable", node.unreliable},
+                         {"local_occluders", node.localOccluders}});
+    }
+    nlohmann::json conflicts = nlohmann::json::array();
+    for (const VisibilityConflict& c : graph.conflicts)
+        conflicts.push_back({{"chain", c.chain},
+                             {"propagated_qi", c.propagatedQi},
+                             {"ray_qi", c.rayQi},
+                             {"reason", c.reason}});
+    nlohmann::json totals = {{"chains", graph.chains.size()},
+                             {"visible_chains", visible},
+                             {"hidden_chains", hidden},
+                             {"simplified_chains", simplified},
+                             {"ambiguous_chains", ambiguous},
+                             {"conflict_chains", conflicting},
+                             {"nodes", graph.nodes.size()},
+                             {"nodes_by_type", std::move(byType)},
+                             {"conflicts", graph.conflicts.size()},
+                             {"ray_tests", graph.rayTests},
+                             {"visible_length_px", graph.visibleLengthPixels()},
+                             {"hidden_length_px", graph.hiddenLengthPixels() - simplifiedLength},
+                             {"simplified_length_px", simplifiedLength}};
+    return {{"totals", std::move(totals)},
+            {"chains", std::move(chains)},
+            {"nodes", std::move(nodes)},
+            {"conflicts", std::move(conflicts)}};
+}
+
 JsonReport::JsonReport(const std::string& toolName, const std::string& toolVersion,
                        const std::string& meshPath, const Snapshot& input, const Method& method,
                        const ParameterSet& parameters)
@@ -173,6 +266,8 @@ void JsonReport::addView(const Camera& camera, const std::vector<Snapshot>& snap
     totals["counters"] = std::move(counters);
     view["totals"] = std::move(totals);
     view["curves"] = std::move(curves);
+    if (!snapshots.empty() && snapshots.back().viewGraph)
+        view["view_graph"] = viewGraphJson(*snapshots.back().viewGraph);
     report_["views"].push_back(std::move(view));
 }
 

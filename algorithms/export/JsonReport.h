@@ -22,7 +22,27 @@
 //                "contour_points", "contour_length_px", "boundary_length_px",
 //                "clipped_curves", "counters" (every counter of the last snapshot)},
 //     "curves": [{"index", "type", "closed", "points", "length_px", "pieces",
-//                 "hidden_points"}]
+//                 "hidden_points"}],
+//     "view_graph": (only when the last snapshot has a view graph) {
+//       "totals": {"chains", "visible_chains", "hidden_chains",
+//                  "simplified_chains", "ambiguous_chains", "conflict_chains",
+//                  "nodes", "nodes_by_type" {type: count}, "conflicts",
+//                  "ray_tests", "visible_length_px", "hidden_length_px",
+//                  "simplified_length_px"},
+//       "chains": [{"index", "type", "curve", "closed", "qi", "qi_lower_bound",
+//                   "rule" (toString(VisibilityRule)), "ambiguous", "concave",
+//                   "conflict", "ray_qi", "simplified_away", "visible",
+//                   "length_px", "start_node", "end_node" (-1: none),
+//                   "segments", "ray_tested_segments",
+//                   "ambiguous_segments",
+//                   "points" [[x, y], ...] (pixels, 0.01 px)}],
+//       "nodes": [{"index", "type" (toString(ViewNodeType)),
+//                  "class" (ViewGraph::nodeClass), "image" [x, y],
+//                  "position" [x, y, z], "mesh_vertex", "chains",
+//                  "near_chains", "far_chains", "qi_step", "unreliable",
+//                  "local_occluders"}],
+//       "conflicts": [{"chain", "propagated_qi", "ray_qi", "reason"}]
+//     }
 //   }]
 // }
 //
@@ -31,6 +51,7 @@
 #include "camera/Camera.h"
 #include "pipeline/Method.h"
 #include "pipeline/Snapshot.h"
+#include "pipeline/ViewGraph.h"
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -43,6 +64,8 @@ namespace contour {
 nlohmann::json phaseJson(const Phase& phase, const Snapshot& snapshot, const Snapshot& previous);
 // The per-curve summary of a snapshot seen by `camera`.
 nlohmann::json curvesJson(const Snapshot& snapshot, const Camera& camera);
+// The "view_graph" object above (points in pixels as stored in the graph).
+nlohmann::json viewGraphJson(const ViewGraph& graph);
 
 class JsonReport {
 public:

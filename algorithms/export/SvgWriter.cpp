@@ -1,10 +1,12 @@
 #include "export/SvgWriter.h"
 
-#include "io/AtomicFile.h"
 #include "export/ProjectedCurves.h"
+#include "io/AtomicFile.h"
+#include "pipeline/ViewGraph.h"
 
 #include <array>
 #include <charconv>
+#include <string_view>
 
 namespace contour {
 
@@ -15,6 +17,20 @@ void appendNumber(std::string& out, double x) {
     const auto result =
         std::to_chars(buffer.data(), buffer.data() + buffer.size(), x, std::chars_format::fixed, 3);
     out.append(buffer.data(), result.ptr);
+}
+
+void appendPoints(std::string& out, const std::vector<Vec2>& points) {
+    out += " points=\"";
+    bool first = true;
+    for (const Vec2& p : points) {
+        if (!first)
+            out += ' ';
+        first = false;
+        appendNumber(out, p.x());
+        out += ',';
+        appendNumber(out, p.y());
+    }
+    out += "\"";
 }
 
 std::string escapeXml(const std::string& text) {
@@ -70,18 +86,211 @@ void appendGroup(std::string& out, CurveType type, const std::vector<ProjectedPo
                    "\" data-points=\"" + std::to_string(curve.pointCount) + "\"";
             if (curve.clipped())
                 out += " data-part=\"" + std::to_string(part) + "\" class=\"clipped\"";
-            out += " points=\"";
-            bool first = true;
-            for (const Vec2& p : curve.pieces[part]) {
-                if (!first)
-                    out += ' ';
-                first = false;
-                appendNumber(out, p.x());
-                out += ',';
-                appendNumber(out, p.y());
-            }
-            out += "\"/>\n";
+            appendPoints(out, curve.pieces[part]);
+            out += "/>\n";
         }
+    }
+    out += "  </g>\n";
+}
+
+// A chain's drawable pieces: runs of points in front of a perspective eye,
+// like ProjectedCurves does for the raw curves.
+std::vector<std::vector<Vec2>> chainPieces(const ViewChain& chain, const Camera& camera) {
+    std::vector<std::vector<Vec2>> pieces;
+    bool open = false;
+    for (const Vec3& point : chain.points) {
+        const ProjectedPoint p = camera.project(point);
+        if ((camera.isOrthographic() || p.depth > 0.0) && p.pixel.allFinite()) {
+            if (!open)
+                pieces.emplace_back();
+            pieces.back().push_back(p.pixel);
+            open = true;
+        } else {
+            open = false;
+        }
+    }
+    std::erase_if(pieces, [](const std::vector<Vec2>& piece) { return piece.size() < 2; });
+    return pieces;
+}
+
+enum class Layer { Visible, Hidden, Simplified };
+
+Layer layerOf(const ViewChain& chain) {
+    if (chain.simplifiedAway)
+        return Layer::Simplified;
+    return chain.qi == 0 ? Layer::Visible : Layer::Hidden;
+}
+
+void appendChainLayer(std::string& out, const ViewGraph& graph, const Camera& camera, Layer layer,
+                      const SvgOptions& options) {
+    const char* id = layer == Layer::Visible  ? "visible"
+                     : layer == Layer::Hidden ? "hidden"
+                                              : "simplified";
+    out += "  <g id=\"";
+    out += id;
+    out += "\" fill=\"none\" stroke-width=\"";
+    appendNumber(out, options.strokeWidth);
+    out += "\" stroke-linejoin=\"round\" stroke-linecap=\"round\"";
+    if (layer != Layer::Visible) {
+        // Hidden lines dashed, a little lighter; simplified ones dotted.
+        out += layer == Layer::Hidden ? " stroke-dasharray=\"6 4\" stroke-opacity=\"0.6\""
+                                      : " stroke-dasharray=\"1 3\" stroke-opacity=\"0.6\"";
+        if (layer == Layer::Simplified || !options.drawHidden)
+            out += " display=\"none\"";
+    }
+    out += ">\n";
+    for (const CurveType type :
+         {CurveType::Contour, CurveType::Boundary, CurveType::SurfaceIntersection}) {
+        bool any = false;
+        for (const ViewChain& chain : graph.chains)
+            any = any || (chain.type == type && layerOf(chain) == layer);
+        if (!any)
+            continue;
+        out += "    <g id=\"";
+        out += id;
+        out += '-';
+        out += toString(type);
+        out += "\" class=\"";
+        out += toString(type);
+        out += "\" stroke=\"";
+        out += strokeColour(type);
+        out += "\">\n";
+        for (size_t c = 0; c < graph.chains.size(); ++c) {
+            const ViewChain& chain = graph.chains[c];
+            if (chain.type != type || layerOf(chain) != layer)
+                continue;
+            const std::vector<std::vector<Vec2>> pieces = chainPieces(chain, camera);
+            std::string attributes =
+                " data-chain=\"" + std::to_string(c) + "\" data-curve=\"" +
+                std::to_string(chain.curve) + "\" data-qi=\"" + std::to_string(chain.qi) +
+                "\" data-rule=\"" + toString(chain.decidedBy) + "\" data-type=\"" + toString(type) +
+                "\" data-closed=\"" + (chain.closed ? "true" : "false") + "\"";
+            if (chain.ambiguous)
+                attributes += " data-ambiguous=\"true\"";
+            if (chain.conflict)
+                attributes += " data-conflict=\"true\"";
+            if (chain.concave)
+                attributes += " data-concave=\"true\"";
+            for (size_t part = 0; part < pieces.size(); ++part) {
+                out += "      <polyline" + attributes;
+                if (pieces.size() > 1 || pieces[part].size() < chain.points.size())
+                    out += " data-part=\"" + std::to_string(part) + "\" class=\"clipped\"";
+                appendPoints(out, pieces[part]);
+                out += "/>\n";
+            }
+        }
+        out += "    </g>\n";
+    }
+    out += "  </g>\n";
+}
+
+const char* nodeColour(ViewNodeType type) {
+    switch (type) {
+    case ViewNodeType::CurtainFold:
+        return "#e41a1c";
+    case ViewNodeType::BoundaryCurtainFold:
+        return "#ff7f00";
+    case ViewNodeType::ImageIntersection:
+        return "#377eb8";
+    case ViewNodeType::ContourBoundaryJunction:
+        return "#4daf4a";
+    case ViewNodeType::Bifurcation:
+        return "#984ea3";
+    case ViewNodeType::SurfaceIntersectionEnd:
+        return "#a65628";
+    case ViewNodeType::CurveEnd:
+        return "#f781bf";
+    }
+    return "#7f7f7f";
+}
+
+// One marker, centred on the node's pixel; the shape tells the type even in
+// grey scale.
+void appendMarker(std::string& out, ViewNodeType type, const Vec2& at, double r,
+                  const std::string& attributes) {
+    auto xy = [&](double dx, double dy) {
+        std::string text;
+        appendNumber(text, at.x() + dx);
+        text += ',';
+        appendNumber(text, at.y() + dy);
+        return text;
+    };
+    auto num = [](double x) {
+        std::string text;
+        appendNumber(text, x);
+        return text;
+    };
+    out += "      ";
+    switch (type) {
+    case ViewNodeType::CurtainFold:
+    case ViewNodeType::SurfaceIntersectionEnd:
+        out += "<circle" + attributes + " cx=\"" + num(at.x()) + "\" cy=\"" + num(at.y()) +
+               "\" r=\"" + num(r) + "\"/>";
+        break;
+    case ViewNodeType::BoundaryCurtainFold:
+        out += "<polygon" + attributes + " points=\"" + xy(0, -r) + " " + xy(r, 0) + " " +
+               xy(0, r) + " " + xy(-r, 0) + "\"/>";
+        break;
+    case ViewNodeType::ImageIntersection:
+        out += "<rect" + attributes + " x=\"" + num(at.x() - 0.8 * r) + "\" y=\"" +
+               num(at.y() - 0.8 * r) + "\" width=\"" + num(1.6 * r) + "\" height=\"" +
+               num(1.6 * r) + "\"/>";
+        break;
+    case ViewNodeType::ContourBoundaryJunction:
+        out += "<polygon" + attributes + " points=\"" + xy(0, -r) + " " + xy(0.87 * r, 0.5 * r) +
+               " " + xy(-0.87 * r, 0.5 * r) + "\"/>";
+        break;
+    case ViewNodeType::Bifurcation:
+        out += "<path" + attributes + " d=\"M" + xy(-r, 0) + "H" + num(at.x() + r) + "M" +
+               xy(0, -r) + "V" + num(at.y() + r) + "\"/>";
+        break;
+    case ViewNodeType::CurveEnd:
+        out += "<path" + attributes + " d=\"M" + xy(-r, -r) + "L" + xy(r, r) + "M" + xy(-r, r) +
+               "L" + xy(r, -r) + "\"/>";
+        break;
+    }
+    out += "\n";
+}
+
+void appendNodes(std::string& out, const ViewGraph& graph, const Camera& camera,
+                 const SvgOptions& options) {
+    out += "  <g id=\"nodes\"";
+    if (!options.drawNodes)
+        out += " display=\"none\"";
+    out += ">\n";
+    for (const ViewNodeType type :
+         {ViewNodeType::CurtainFold, ViewNodeType::BoundaryCurtainFold,
+          ViewNodeType::ImageIntersection, ViewNodeType::ContourBoundaryJunction,
+          ViewNodeType::Bifurcation, ViewNodeType::SurfaceIntersectionEnd,
+          ViewNodeType::CurveEnd}) {
+        bool any = false;
+        for (const ViewNode& node : graph.nodes)
+            any = any || node.type == type;
+        if (!any)
+            continue;
+        const bool stroked = type == ViewNodeType::Bifurcation || type == ViewNodeType::CurveEnd ||
+                             type == ViewNodeType::SurfaceIntersectionEnd;
+        out += "    <g id=\"nodes-";
+        out += toString(type);
+        out += "\" class=\"";
+        out += toString(type);
+        out += "\" ";
+        out += stroked ? "fill=\"none\" stroke=\"" : "stroke=\"none\" fill=\"";
+        out += nodeColour(type);
+        out += stroked ? "\" stroke-width=\"1.5\">\n" : "\">\n";
+        for (size_t n = 0; n < graph.nodes.size(); ++n) {
+            const ViewNode& node = graph.nodes[n];
+            if (node.type != type)
+                continue;
+            const ProjectedPoint p = camera.project(node.position);
+            if (!((camera.isOrthographic() || p.depth > 0.0) && p.pixel.allFinite()))
+                continue; // behind the eye: no pixel to mark
+            const std::string attributes = " data-node=\"" + std::to_string(n) + "\" data-type=\"" +
+                                           toString(type) + "\" data-class=\"" +
+                                           toString(graph.nodeClass(static_cast<Index>(n))) + "\"";
+            appendMarker(out, type, p.pixel, options.markerSize, attributes);
+        }
+        out += "    </g>\n";
     }
     out += "  </g>\n";
 }
@@ -102,10 +311,32 @@ std::string svgDocument(const Snapshot& snapshot, const Camera& camera, const Sv
     if (!options.title.empty())
         out += "  <title>" + escapeXml(options.title) + "</title>\n";
     out += "  <desc>phase " + escapeXml(snapshot.phaseName) + "; " + std::to_string(curves.size()) +
-           " curves</desc>\n";
+           " curves";
+    if (snapshot.viewGraph) {
+        const ViewGraph& graph = *snapshot.viewGraph;
+        long long visible = 0, simplified = 0;
+        for (const ViewChain& chain : graph.chains) {
+            visible += chain.visible();
+            simplified += chain.simplifiedAway;
+        }
+        out += "; view graph: " + std::to_string(graph.chains.size()) + " chains (" +
+               std::to_string(visible) + " visible, " + std::to_string(simplified) +
+               " simplified away), " + std::to_string(graph.nodes.size()) + " nodes, " +
+               std::to_string(graph.conflicts.size()) + " conflicts";
+    }
+    out += "</desc>\n";
     if (options.background)
         out += "  <rect id=\"background\" x=\"0\" y=\"0\" width=\"" + w + "\" height=\"" + h +
                "\" fill=\"#ffffff\"/>\n";
+    if (snapshot.viewGraph) {
+        const ViewGraph& graph = *snapshot.viewGraph;
+        appendChainLayer(out, graph, camera, Layer::Hidden, options);
+        appendChainLayer(out, graph, camera, Layer::Simplified, options);
+        appendChainLayer(out, graph, camera, Layer::Visible, options);
+        appendNodes(out, graph, camera, options);
+        out += "</svg>\n";
+        return out;
+    }
     appendGroup(out, CurveType::Contour, projected, options);
     appendGroup(out, CurveType::Boundary, projected, options);
     bool intersections = false;

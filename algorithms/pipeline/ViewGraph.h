@@ -108,18 +108,27 @@ struct ViewNode {
     // twice).
     std::vector<Index> chains;
 
-    // Curtain folds: the locally visible (exterior) chain and the occluded
-    // (interior) one. T-junctions: the two chains of the near (occluding)
-    // curve and of the far curve; farChains[1] is the far chain on the
-    // occluded side. Unused entries are kInvalidIndex.
+    // Curtain folds: the chain the vertex's one-ring occludes less (usually
+    // the exterior one) as nearChains[0], the other as farChains[1].
+    // T-junctions: the two chains of the near (occluding) curve and of the
+    // far curve; farChains[1] is the far chain on the occluded side. Unused
+    // entries are kInvalidIndex.
     std::array<Index, 2> nearChains{kInvalidIndex, kInvalidIndex};
     std::array<Index, 2> farChains{kInvalidIndex, kInvalidIndex};
     Vec3 nearPoint = Vec3::Zero(); // T-junction: the near curve's point (on the near surface)
     // The QI step from the near (or unoccluded far) chain to the occluded far
     // chain: +2 behind a contour, +1 behind a boundary, at a curtain fold the
-    // one-ring faces that occlude the far edge (≥ 1). 0 when no step applies.
+    // one-ring faces that occlude the far edge (≥ 1; 0 at a vertex the
+    // near-face test calls a fold but the one-ring does not). 0 when no step
+    // applies.
     int qiStep = 0;
     bool unreliable = false; // a near-face test below its threshold (Bénard 2014 fn. 3)
+    // Nodes at a mesh vertex (curtain folds, Y junctions, bifurcations),
+    // parallel to `chains`: how many faces of the vertex's one-ring occlude
+    // that chain's first edge next to the vertex (tutorial app. C.2 test).
+    // QI differences between the chains equal the differences of these
+    // counts (tutorial §4.7, local overlap tests). Empty for other nodes.
+    std::vector<int> localOccluders;
 };
 
 // A ray test that disagrees with the QI that propagation gave the same chain.

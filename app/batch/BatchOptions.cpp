@@ -198,12 +198,15 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
                                     ->group(cameraGroup);
 
     const std::string outputGroup = "Output (written only when every step succeeds)";
-    app.add_option("--svg", o.svgPath, "Write the curves as SVG.")
+    app.add_option("--svg", o.svgPath,
+                   "Write the curves as SVG (the view graph's visible/hidden layers and node "
+                   "markers when the method ran its visibility phase).")
         ->type_name("FILE")
         ->group(outputGroup);
     app.add_flag("--strict", o.strict,
-                 "Exit with code 3 when any post-condition of any phase is violated (the "
-                 "outputs are still written).");
+                 "Exit with code 3 when any post-condition of any phase is violated, or when "
+                 "a ray test disagrees with exact QI propagation (visibility conflicts of the "
+                 "votes are only reported); the outputs are still written.");
     app.add_option("--json", o.jsonPath, "Write the JSON report.")
         ->type_name("FILE")
         ->group(outputGroup);

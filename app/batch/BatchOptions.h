@@ -37,7 +37,10 @@ struct BatchOptions {
     std::optional<int> phases; // stop after this many phases; all when empty
     std::string svgPath, jsonPath, writeCameraPath, plyPath;
     // Exit with code 3 when any phase of any view violated a post-condition
-    // (Release builds count violations instead of failing the phase).
+    // (Release builds count violations instead of failing the phase), or when
+    // a view graph records a visibility conflict between a ray test and exact
+    // propagation (the votes' conflicts of the interpolated and consistent
+    // methods are by design and only reported).
     bool strict = false;
 };
 

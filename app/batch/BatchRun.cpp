@@ -9,6 +9,7 @@
 #include "mesh/MeshReader.h"
 #include "mesh/MeshWriter.h"
 #include "pipeline/Runner.h"
+#include "pipeline/ViewGraph.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -121,6 +122,36 @@ struct PendingFile {
     std::function<void(const std::string&)> write;
 };
 
+// Conflicts the methods produce on purpose: a vote overriding propagation
+// (Bénard 2014 §8.4, reason "consistent-vote") and the interpolated
+// contours' heuristic votes (tutorial §6.2.4), whose disagreements with a
+// direct ray test are what that method shows. Everything else (exact
+// propagation vs a ray test) should never happen.
+bool conflictByDesign(const ViewGraph& graph, const VisibilityConflict& conflict) {
+    if (conflict.reason == "consistent-vote")
+        return true;
+    if (conflict.chain < 0 || conflict.chain >= static_cast<Index>(graph.chains.size()))
+        return false;
+    switch (graph.chains[static_cast<size_t>(conflict.chain)].decidedBy) {
+    case VisibilityRule::MajorityVote:
+    case VisibilityRule::AmbiguityCusps:
+    case VisibilityRule::AmbiguityShortChain:
+    case VisibilityRule::AmbiguityBoundary:
+    case VisibilityRule::CuspConsistency:
+    case VisibilityRule::AmbiguousInvisible:
+    case VisibilityRule::HeuristicVote:
+        return true;
+    default:
+        return false;
+    }
+}
+
+SvgOptions svgOptions(const std::string& title) {
+    SvgOptions options;
+    options.title = title;
+    return options;
+}
+
 } // namespace
 
 std::string viewOutputPath(const std::string& path, int view) {
@@ -159,6 +190,8 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
     std::vector<PendingFile> files;
     long long violations = 0;
     std::string firstViolation;
+    long long conflicts = 0;
+    std::string firstConflict;
     const bool several = cameras.size() > 1;
     for (size_t v = 0; v < cameras.size(); ++v) {
         const Camera& camera = cameras[v];
@@ -192,13 +225,26 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
                                          c.firstExample + ")";
                     violations += c.violations;
                 }
+        // A ray test that disagrees with exact QI propagation is a bug or a
+        // degenerate input: --strict fails on those too (the votes' conflicts
+        // are expected, see conflictByDesign).
+        if (const auto& graph = runner->current().viewGraph)
+            for (const VisibilityConflict& c : graph->conflicts) {
+                if (conflictByDesign(*graph, c))
+                    continue;
+                if (conflicts++ == 0)
+                    firstConflict = (several ? "view " + std::to_string(view) + ", " : "") +
+                                    "chain " + std::to_string(c.chain) + ": propagated QI " +
+                                    std::to_string(c.propagatedQi) + ", ray test " +
+                                    std::to_string(c.rayQi) + " (" + c.reason + ")";
+            }
         report.addView(camera, runner->snapshots());
         const std::string title = o.meshPath + " - " + method.label +
                                   (several ? ", view " + std::to_string(view) : "") + ", after " +
                                   runner->current().phaseName;
         if (!o.svgPath.empty())
             files.push_back({several ? viewOutputPath(o.svgPath, view) : o.svgPath,
-                             svgDocument(runner->current(), camera, {title, 1.5, true}),
+                             svgDocument(runner->current(), camera, svgOptions(title)),
                              {}});
         if (!o.writeCameraPath.empty())
             files.push_back({several ? viewOutputPath(o.writeCameraPath, view) : o.writeCameraPath,
@@ -239,10 +285,16 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
         throw BatchFailure(e.what());
     }
     printWritten(out, written);
-    if (o.strict && violations > 0) {
+    if (o.strict && (violations > 0 || conflicts > 0)) {
         out.flush();
-        std::cerr << "contour-batch: --strict: " << violations
-                  << " post-conditions violated; first: " << firstViolation << "\n";
+        if (violations > 0)
+            std::cerr << "contour-batch: --strict: " << violations
+                      << " post-conditions violated; first: " << firstViolation << "\n";
+        if (conflicts > 0)
+            std::cerr << "contour-batch: --strict: " << conflicts
+                      << " visibility conflicts (a ray test disagrees with exact propagation); "
+                         "first: "
+                      << firstConflict << "\n";
         return 3;
     }
     return 0;

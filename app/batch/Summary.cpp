@@ -2,6 +2,7 @@
 
 #include "contours/Methods.h"
 #include "export/ProjectedCurves.h"
+#include "pipeline/ViewGraph.h"
 
 #include <cmath>
 #include <iomanip>
@@ -22,7 +23,10 @@ std::string number(double x) {
 }
 
 std::string vec(const Vec3& v) {
-    return "(" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + ")";
+    // Appended piece by piece: GCC 12 flags `"(" + string` (-Wrestrict).
+    std::string text(1, '(');
+    text += number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + ")";
+    return text;
 }
 
 const char* typeText(ParameterType type) {
@@ -141,6 +145,45 @@ void printViewTotals(std::ostream& out, const Snapshot& last, const Camera& came
     out << "result  after " << last.phaseName << ": " << plural(chains, "contour chain") << " ("
         << loops << " closed, " << chains - loops << " open), "
         << plural(boundaries, "boundary curve") << ", contour length " << len.str() << " px\n";
+    if (last.viewGraph)
+        printViewGraphTotals(out, *last.viewGraph);
+}
+
+void printViewGraphTotals(std::ostream& out, const ViewGraph& graph) {
+    long long visible = 0, hidden = 0, simplified = 0, ambiguous = 0;
+    for (const ViewChain& chain : graph.chains) {
+        visible += chain.visible();
+        hidden += !chain.visible() && !chain.simplifiedAway;
+        simplified += chain.simplifiedAway;
+        ambiguous += chain.ambiguous;
+    }
+    long long tJunctions = 0, curtainFolds = 0, boundaryFolds = 0, other = 0;
+    for (const ViewNode& node : graph.nodes) {
+        if (node.type == ViewNodeType::ImageIntersection)
+            ++tJunctions;
+        else if (node.type == ViewNodeType::CurtainFold)
+            ++curtainFolds;
+        else if (node.type == ViewNodeType::BoundaryCurtainFold)
+            ++boundaryFolds;
+        else
+            ++other;
+    }
+    std::ostringstream len;
+    len << std::fixed << std::setprecision(1) << graph.visibleLengthPixels();
+    out << "graph   " << plural(static_cast<long long>(graph.chains.size()), "chain") << ": "
+        << visible << " visible, " << hidden << " hidden";
+    if (simplified > 0)
+        out << ", " << simplified << " simplified away";
+    if (ambiguous > 0)
+        out << ", " << ambiguous << " ambiguous";
+    out << "; " << plural(tJunctions, "T-junction") << ", " << plural(curtainFolds, "curtain fold");
+    if (boundaryFolds > 0)
+        out << ", " << plural(boundaryFolds, "boundary curtain fold");
+    if (other > 0)
+        out << ", " << plural(other, "other node");
+    out << "; " << plural(graph.rayTests, "ray test") << ", "
+        << plural(static_cast<long long>(graph.conflicts.size()), "conflict") << "; visible length "
+        << len.str() << " px\n";
 }
 
 void printWritten(std::ostream& out, const std::vector<std::string>& paths) {

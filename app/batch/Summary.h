@@ -19,7 +19,11 @@ void printViewHeader(std::ostream& out, int view, int viewCount, const Camera& c
 // One phase: `snapshot` after it, `previous` before it.
 void printPhase(std::ostream& out, const Method& method, const Snapshot& snapshot,
                 const Snapshot& previous);
+// The totals line, and the view-graph line when `last` has a view graph.
 void printViewTotals(std::ostream& out, const Snapshot& last, const Camera& camera);
+// Chains visible / hidden / simplified away, T-junctions, curtain folds, ray
+// tests, conflicts and the visible length in pixels.
+void printViewGraphTotals(std::ostream& out, const ViewGraph& graph);
 void printWritten(std::ostream& out, const std::vector<std::string>& paths);
 
 } // namespace contour::batch

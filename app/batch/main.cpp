@@ -1,7 +1,8 @@
 // contour-batch: runs a contour method headless on a mesh and writes the
 // curves (SVG) and a report of every phase (JSON). Exit codes: 0 success,
 // 1 bad input (mesh, camera file), a failed phase or an unwritable output,
-// 2 bad arguments, 3 post-conditions violated under --strict.
+// 2 bad arguments, 3 post-conditions violated (or a visibility conflict of
+// exact propagation) under --strict.
 #include "BatchOptions.h"
 #include "BatchRun.h"
 #include "Summary.h"

@@ -6,6 +6,7 @@
 #include "PhaseStepper.h"
 #include "SceneColors.h"
 #include "SceneView3D.h"
+#include "ViewGraphStyle.h"
 #include "contours/Methods.h"
 #include "mesh/MeshError.h"
 #include "mesh/MeshReader.h"
@@ -104,6 +105,64 @@ QIcon overlayIcon(SceneOverlay overlay) {
     case SceneOverlay::RadialEdges:
         p.setPen(QPen(sceneColors::kRadialEdge.toQColor(), 2.5));
         p.drawLine(QPointF(2, 14), QPointF(14, 2));
+        break;
+    }
+    return QIcon(pixmap);
+}
+
+struct ViewGraphToggleInfo {
+    const char* name;
+    const char* toolTip;
+    bool checked; // at start
+};
+
+const std::array<ViewGraphToggleInfo, MainWindow::kViewGraphToggleCount> kViewGraphToggles{{
+    {"Hidden curves",
+     "Draw the view graph's hidden chains (QI > 0): dashed in the 2D view, thinner and darker "
+     "on the surface in the 3D view (orbit to see them), and the nodes that only touch them",
+     true},
+    {"Colour by QI",
+     "Colour the view graph's chains by quantitative invisibility (QI 0 black in 2D, red in 3D; "
+     "1, 2, 3+ in purples); unchecked: one colour per chain",
+     true},
+    {"View-graph nodes",
+     "Mark the view graph's nodes by type: curtain folds (cusps), boundary curtain folds, "
+     "T-junctions, Y junctions, bifurcations, surface-intersection ends, curve ends "
+     "(glyphs in 2D, dots over everything in 3D)",
+     true},
+    {"Simplified curves",
+     "Draw, very faint, the visible chains that topological simplification hid (Bénard 2014 "
+     "§9)",
+     false},
+}};
+
+QIcon viewGraphIcon(MainWindow::ViewGraphToggle toggle) {
+    QPixmap pixmap(16, 16);
+    pixmap.fill(Qt::transparent);
+    QPainter p(&pixmap);
+    p.setRenderHint(QPainter::Antialiasing);
+    const QColor hidden = viewGraphColors::kHiddenQi[0].toQColor();
+    switch (toggle) {
+    case MainWindow::ViewGraphToggle::HiddenCurves:
+        p.setPen(QPen(hidden, 2.0, Qt::DashLine));
+        p.drawLine(QPointF(1, 12), QPointF(15, 4));
+        break;
+    case MainWindow::ViewGraphToggle::ColourByQi:
+        p.setPen(QPen(Qt::black, 2.0));
+        p.drawLine(QPointF(1, 5), QPointF(15, 5));
+        p.setPen(QPen(hidden, 2.0));
+        p.drawLine(QPointF(1, 11), QPointF(15, 11));
+        break;
+    case MainWindow::ViewGraphToggle::Nodes:
+        p.setPen(Qt::NoPen);
+        p.setBrush(nodeStyle(ViewNodeType::ImageIntersection).color.toQColor());
+        p.drawPolygon(QPolygonF({QPointF(1, 14), QPointF(9, 14), QPointF(5, 6)}));
+        p.setBrush(nodeStyle(ViewNodeType::CurtainFold).color.toQColor());
+        p.drawRect(QRectF(9, 2, 6, 6));
+        break;
+    case MainWindow::ViewGraphToggle::SimplifiedCurves:
+        p.setPen(QPen(viewGraphColors::kSimplified3D.toQColor(), 2.0));
+        p.drawLine(QPointF(1, 12), QPointF(15, 4));
         break;
     }
     return QIcon(pixmap);
@@ -289,6 +348,86 @@ void MainWindow::createOverlayActions(QMenu* viewMenu) {
         overlayBar_->addAction(action);
         menu->addAction(action);
     }
+    createViewGraphActions(menu);
+}
+
+void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
+    viewGraphSeparator_ = overlayBar_->addSeparator();
+    overlayMenu->addSeparator();
+    for (int i = 0; i < kViewGraphToggleCount; ++i) {
+        const ViewGraphToggleInfo& info = kViewGraphToggles[static_cast<size_t>(i)];
+        const auto toggle = static_cast<ViewGraphToggle>(i);
+        auto* action = new QAction(viewGraphIcon(toggle), tr(info.name), this);
+        action->setCheckable(true);
+        action->setChecked(info.checked);
+        action->setToolTip(tr(info.toolTip));
+        action->setStatusTip(tr(info.toolTip));
+        connect(action, &QAction::toggled, this, [this, toggle](bool on) {
+            switch (toggle) {
+            case ViewGraphToggle::HiddenCurves:
+                sceneView_->setShowHiddenCurves(on);
+                imageView_->setShowHiddenCurves(on);
+                break;
+            case ViewGraphToggle::ColourByQi: {
+                const ChainColoring coloring = on ? ChainColoring::ByQi : ChainColoring::ByChain;
+                sceneView_->setChainColoring(coloring);
+                imageView_->setChainColoring(coloring);
+                break;
+            }
+            case ViewGraphToggle::Nodes:
+                sceneView_->setShowViewGraphNodes(on);
+                imageView_->setShowNodes(on);
+                break;
+            case ViewGraphToggle::SimplifiedCurves:
+                sceneView_->setShowSimplifiedCurves(on);
+                imageView_->setShowSimplifiedCurves(on);
+                break;
+            }
+            updateViewGraphLegend();
+        });
+        // The views' own defaults are the actions' (info.checked).
+        viewGraphActions_[static_cast<size_t>(i)] = action;
+        overlayBar_->addAction(action);
+        overlayMenu->addAction(action);
+    }
+    viewGraphLegend_ = new QLabel(overlayBar_);
+    viewGraphLegend_->setObjectName(QStringLiteral("viewGraphLegend"));
+    viewGraphLegend_->setTextFormat(Qt::RichText);
+    viewGraphLegend_->setContentsMargins(8, 0, 8, 0);
+    viewGraphLegend_->setToolTip(tr("3D view: chain colours by QI and node dot colours by type "
+                                    "(the 2D view draws its own legend)"));
+    viewGraphLegendAction_ = overlayBar_->addWidget(viewGraphLegend_);
+}
+
+void MainWindow::updateViewGraphLegend() {
+    if (!viewGraphLegend_)
+        return;
+    QStringList entries;
+    const Snapshot& snapshot = sceneView_->snapshot();
+    if (sceneView_->hasViewGraph() && snapshot.viewGraph) {
+        const ViewGraph& graph = *snapshot.viewGraph;
+        if (sceneView_->chainColoring() == ChainColoring::ByQi) {
+            entries << swatch(sceneView_->showsScalarField() ? sceneColors::kContourOverField
+                                                             : sceneColors::kContour3D,
+                              tr("QI 0"));
+            if (sceneView_->showsHiddenCurves())
+                entries << swatch(viewGraphColors::kHiddenQi[0], tr("1"))
+                        << swatch(viewGraphColors::kHiddenQi[1], tr("2"))
+                        << swatch(viewGraphColors::kHiddenQi[2], tr("3+"));
+        }
+        if (sceneView_->showsViewGraphNodes()) {
+            std::array<int, kViewNodeTypeCount> counts{};
+            for (const ViewNode& node : graph.nodes)
+                ++counts[static_cast<size_t>(node.type)];
+            for (int t = 0; t < kViewNodeTypeCount; ++t)
+                if (counts[static_cast<size_t>(t)] > 0)
+                    entries
+                        << QStringLiteral("<span style=\"color:%1\">&#9679;</span>&nbsp;%2")
+                               .arg(nodeStyle(static_cast<ViewNodeType>(t)).color.toQColor().name(),
+                                    tr(nodeStyle(static_cast<ViewNodeType>(t)).label));
+        }
+    }
+    viewGraphLegend_->setText(entries.join(QStringLiteral("&nbsp;&nbsp;")));
 }
 
 void MainWindow::updateOverlayActions() {
@@ -298,6 +437,13 @@ void MainWindow::updateOverlayActions() {
         overlayActions_[i]->setVisible(available);
         any |= available;
     }
+    const bool graph = sceneView_->hasViewGraph();
+    for (QAction* action : viewGraphActions_)
+        action->setVisible(graph);
+    viewGraphSeparator_->setVisible(graph);
+    viewGraphLegendAction_->setVisible(graph);
+    any |= graph;
+    updateViewGraphLegend();
     // The bar only takes room when it has something to offer.
     overlayBar_->setVisible(any);
 }
@@ -314,6 +460,9 @@ void MainWindow::updateColorLegend() {
                 << swatch(sceneColors::kBackFace, tr("back"));
     }
     colorLegend_->setText(entries.join(QStringLiteral("&nbsp;&nbsp;")));
+    // Visible chains coloured by QI follow the curves' colour (black over a
+    // scalar field).
+    updateViewGraphLegend();
 }
 
 void MainWindow::openFileDialog() {

@@ -7,7 +7,9 @@
 // splitter, a dock with the method panel and the phase stepper on the left,
 // a "Display" tool bar with the 3D view's "Colour by" selector and its
 // legend, an "Overlays" tool bar with the 3D view's overlay toggles (shown
-// only for the overlays the snapshot has fields for), a status bar. The small public API
+// only for the overlays the snapshot has fields for) and the view graph
+// toggles of both views (shown when the snapshot has a view graph), a status
+// bar. The small public API
 // below is what the menus call, and what tests drive.
 #include "SceneView3D.h"
 #include "camera/Camera.h"
@@ -103,6 +105,17 @@ public:
         return overlayActions_[static_cast<int>(overlay)];
     }
 
+    // The view graph toggles (Overlays tool bar, View › Overlays), applied to
+    // the 2D and the 3D view alike; visible only while the snapshot has a
+    // view graph. ColourByQi unchecked colours chains by chain index.
+    enum class ViewGraphToggle { HiddenCurves, ColourByQi, Nodes, SimplifiedCurves };
+    static constexpr int kViewGraphToggleCount = 4;
+    QAction* viewGraphAction(ViewGraphToggle toggle) const {
+        return viewGraphActions_[static_cast<int>(toggle)];
+    }
+    // The 3D view's view graph legend (QI colours, node dot colours).
+    QLabel* viewGraphLegend() const { return viewGraphLegend_; }
+
     SceneView3D* sceneView() const { return sceneView_; }
     ImageView2D* imageView() const { return imageView_; }
     PhaseStepper* phaseStepper() const { return stepper_; }
@@ -153,6 +166,8 @@ private:
     // Shows the actions of the overlays the 3D view can draw.
     void updateOverlayActions();
     void updateColorLegend();
+    void createViewGraphActions(QMenu* overlayMenu);
+    void updateViewGraphLegend();
 
     SceneView3D* sceneView_ = nullptr;
     ImageView2D* imageView_ = nullptr;
@@ -166,6 +181,10 @@ private:
     QLabel* colorLegend_ = nullptr;
     QToolBar* overlayBar_ = nullptr;
     std::array<QAction*, kSceneOverlayCount> overlayActions_{};
+    std::array<QAction*, kViewGraphToggleCount> viewGraphActions_{};
+    QAction* viewGraphSeparator_ = nullptr;
+    QLabel* viewGraphLegend_ = nullptr;
+    QAction* viewGraphLegendAction_ = nullptr;
     bool updatingColorSelector_ = false;
 
     QAction* openAction_ = nullptr;

@@ -6,6 +6,8 @@
 #include "contours/SurfacePhase.h"
 #include "contours/consistent/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
+#include "visibility/SimplificationPhase.h"
+#include "visibility/VisibilityPhase.h"
 
 #include <string>
 
@@ -66,6 +68,8 @@ Method makeConsistentContourMethod() {
     addEdgeSplitPhase(m);
     addNormalWigglePhase(m);
     addChainingPhase(m);
+    addVisibilityPhase(m, VisibilityFlavor::Consistent);
+    addSimplificationPhase(m);
     return m;
 }
 

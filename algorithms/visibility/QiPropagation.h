@@ -1,0 +1,50 @@
+#pragma once
+// Quantitative invisibility by propagation (tutorial §4.6–4.7, after Appel
+// 1967 and Markosian 1997): one ray test per connected piece of the view
+// graph, then QI carried through its nodes: equal across a node without a
+// singularity, + the node's step behind a T-junction or a curtain fold, the
+// local one-ring counts at Y junctions and bifurcations. Optionally every
+// chain is ray-tested too, and each disagreement is kept as a conflict.
+#include "camera/Camera.h"
+#include "mesh/TriangleMesh.h"
+#include "pipeline/ViewGraph.h"
+
+#include <string>
+
+namespace contour {
+
+class RayCaster;
+
+struct QiPropagationOptions {
+    bool checkRays = true; // ray-test every chain and record disagreements
+};
+
+struct QiPropagationStats {
+    long long components = 0;
+    long long seedRays = 0;
+    long long checkRays = 0;
+    long long cycleDisagreements = 0; // a chain reached twice with different QI
+    long long belowLowerBound = 0;    // propagated QI below the chain's known bound
+    long long rayConflicts = 0;       // check rays that disagree with propagation
+    long long exactRecounts = 0;      // disagreeing check rays recounted exactly
+    long long correctedRays = 0;      // ... whose exact count differed from Embree's
+};
+
+// The QI of a chain from one ray: the midpoint of its middle segment,
+// ignoring the faces adjacent to that segment's element (tutorial app. C.1).
+// exact: count with RayCaster::exactOccluders (every face, exact predicates).
+int chainRayQi(const ViewChain& chain, const TriangleMesh& mesh, const Camera& camera,
+               const RayCaster& rays, bool exact = false);
+
+// Ray-tests every chain not decided by a ray and records each disagreement
+// with its QI as a conflict (reason names `decidedBy`); the chain keeps its
+// QI and gets rayQi and the conflict flag.
+void checkChainsWithRays(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
+                         const RayCaster& rays, const std::string& decidedBy,
+                         QiPropagationStats* stats);
+
+void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
+                 const RayCaster& rays, const QiPropagationOptions& options,
+                 QiPropagationStats* stats = nullptr);
+
+} // namespace contour

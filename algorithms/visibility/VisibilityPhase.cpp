@@ -1,0 +1,422 @@
+// The "visibility" phase: the view graph of the snapshot's curves (tutorial
+// §4.5–4.7; Bénard 2014 §8) and the QI of every chain.
+//   - Mesh contours: exact mesh visibility (tutorial ch. 4, app. B–C).
+//   - Consistent contours: the same graph on the consistent mesh, curtain
+//     folds by the near-face test (Bénard 2014 §8.1), then §8.4's votes and
+//     ambiguity rules (ConsistentVisibility.h).
+//   - Interpolated contours: heuristic votes (tutorial §6.2.4,
+//     InterpolatedVisibility.h).
+#include "visibility/VisibilityPhase.h"
+
+#include "pipeline/FieldNames.h"
+#include "visibility/ConsistentVisibility.h"
+#include "visibility/InterpolatedVisibility.h"
+#include "visibility/QiPropagation.h"
+#include "visibility/RayCaster.h"
+#include "visibility/SurfaceIntersections.h"
+#include "visibility/ViewGraphBuilder.h"
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <sstream>
+
+namespace contour {
+
+namespace {
+
+constexpr const char* kVisibility = "visibility";
+constexpr const char* kCheckRays = "visibility-check-rays";
+constexpr const char* kNearFaceEpsilon = "near-face-epsilon";
+constexpr const char* kShortChain = "ambiguity-short-chain";
+constexpr const char* kSurfaceIntersections = "surface-intersections";
+constexpr const char* kVotes = "visibility-votes";
+constexpr const char* kIgnoreAdjacent = "visibility-ignore-adjacent";
+
+// Surface intersections depend on the mesh only: the mesh and interpolated
+// methods share one mesh between views (and the tessellation is cached), so
+// the last result is kept for the mesh it was computed on.
+struct IntersectionCache {
+    std::mutex mutex;
+    std::weak_ptr<const TriangleMesh> mesh;
+    std::shared_ptr<const SurfaceIntersectionCurves> curves;
+};
+
+std::shared_ptr<const SurfaceIntersectionCurves>
+cachedSurfaceIntersections(const std::shared_ptr<const TriangleMesh>& mesh, bool* fromCache) {
+    static IntersectionCache cache;
+    {
+        std::lock_guard<std::mutex> lock(cache.mutex);
+        if (cache.curves && cache.mesh.lock() == mesh) {
+            *fromCache = true;
+            return cache.curves;
+        }
+    }
+    auto curves =
+        std::make_shared<const SurfaceIntersectionCurves>(surfaceIntersectionCurves(*mesh));
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    cache.mesh = mesh;
+    cache.curves = curves;
+    *fromCache = false;
+    return curves;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<std::uint8_t> byteField(const Snapshot& s, const char* name, bool invert, size_t size) {
+    std::vector<std::uint8_t> out(size, 0);
+    const Field* field = s.field(name);
+    if (!field || !field->labels())
+        return out;
+    const std::vector<int>& values = *field->labels();
+    for (size_t i = 0; i < size && i < values.size(); ++i)
+        out[i] = static_cast<std::uint8_t>(invert ? values[i] == 0 : values[i] != 0);
+    return out;
+}
+
+void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s) {
+    if (!ctx.parameters.getBool(kVisibility)) {
+        s.viewGraph.reset();
+        s.notes.push_back("visibility is off (--visibility true to turn it on): no view graph, "
+                          "the curves are passed through unchanged");
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const TriangleMesh& mesh = *s.mesh;
+    std::vector<Polyline> curves = s.curves ? *s.curves : std::vector<Polyline>{};
+    std::vector<std::vector<Index>> secondFaces(curves.size());
+
+    // Tutorial §4.2/§4.4, Bénard 2014 §8.1: surface–surface intersections
+    // are a third curve type; they join the snapshot's curves.
+    double intersectionSeconds = 0.0;
+    long long intersectionCurves = 0;
+    if (ctx.parameters.getBool(kSurfaceIntersections)) {
+        const auto t0 = std::chrono::steady_clock::now();
+        bool cached = false;
+        const std::shared_ptr<const SurfaceIntersectionCurves> found =
+            cachedSurfaceIntersections(s.mesh, &cached);
+        intersectionSeconds = secondsSince(t0);
+        s.setCounter("surface intersections cached", cached ? 1.0 : 0.0);
+        intersectionCurves = static_cast<long long>(found->curves.size());
+        for (size_t i = 0; i < found->curves.size(); ++i) {
+            curves.push_back(found->curves[i]);
+            secondFaces.push_back(i < found->secondFaces.size() ? found->secondFaces[i]
+                                                                : std::vector<Index>{});
+        }
+        if (intersectionCurves > 0)
+            s.notes.push_back(std::to_string(intersectionCurves) +
+                              " surface-intersection curves added to the curves");
+    }
+    ctx.checkCancelled();
+
+    // Face orientation: the exact facing (mesh, interpolated) or the VBO
+    // (consistent: the contour generator separates F-VBO from B-VBO faces).
+    const char* orientationField =
+        flavor == VisibilityFlavor::Consistent ? fields::kVbo : fields::kFacing;
+    const Field* orientation = s.field(orientationField);
+    if (!orientation || !orientation->labels())
+        throw std::runtime_error(std::string("visibility: the snapshot has no '") +
+                                 orientationField + "' face field");
+
+    ViewGraphOptions options;
+    options.foldTest = flavor == VisibilityFlavor::Mesh         ? CurtainFoldTest::Convexity
+                       : flavor == VisibilityFlavor::Consistent ? CurtainFoldTest::NearFace
+                                                                : CurtainFoldTest::None;
+    if (flavor == VisibilityFlavor::Consistent)
+        options.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
+    // Exact mesh visibility needs every fold of the mesh as an occluder
+    // (see ViewGraphOptions); interpolated contours keep the tutorial's
+    // simpler model where the curves themselves occlude.
+    options.meshFoldOccluders = flavor != VisibilityFlavor::Interpolated;
+    options.concaveLowerBound = intersectionCurves == 0;
+    if (intersectionCurves > 0 && flavor == VisibilityFlavor::Mesh)
+        s.notes.push_back("the mesh intersects itself: concave contours may be visible there "
+                          "(tutorial theorem B.0.1 assumes no self-intersection), so they get "
+                          "no lower bound and are decided by propagation and rays");
+    const Field* facing = s.field(fields::kFacing);
+    ViewGraphInput input;
+    input.mesh = &mesh;
+    input.curves = &curves;
+    input.secondFaces = &secondFaces;
+    input.faceOrientation = orientation->labels();
+    input.facing = facing && facing->labels() ? facing->labels() : orientation->labels();
+    ViewGraphBuildStats built;
+    const auto tBuild = std::chrono::steady_clock::now();
+    auto graph = std::make_shared<ViewGraph>(buildViewGraph(input, ctx.camera, options, &built));
+    const double buildSeconds = secondsSince(tBuild);
+    ctx.checkCancelled();
+
+    const auto tRays = std::chrono::steady_clock::now();
+    const RayCaster rays(mesh);
+    const double sceneSeconds = secondsSince(tRays);
+    QiPropagationOptions propagation;
+    propagation.checkRays = ctx.parameters.getBool(kCheckRays);
+    QiPropagationStats propagated;
+    if (flavor == VisibilityFlavor::Interpolated) {
+        // Tutorial §6.2.4: interpolated contours lie inside faces, not on the
+        // mesh's folds, so the +2/+1 propagation rules do not hold for them;
+        // the heuristic vote decides, and the check rays say where it
+        // disagrees with a single ray.
+        voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, ctx.parameters.getInt(kVotes),
+                                   ctx.parameters.getBool(kIgnoreAdjacent));
+        if (propagation.checkRays)
+            checkChainsWithRays(*graph, mesh, ctx.camera, rays, "the heuristic vote", &propagated);
+    } else {
+        propagateQi(*graph, mesh, ctx.camera, rays, propagation, &propagated);
+    }
+    ctx.checkCancelled();
+
+    if (flavor == VisibilityFlavor::Consistent) {
+        ConsistentVisibilityOptions consistent;
+        consistent.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
+        consistent.shortChainPixels = ctx.parameters.getDouble(kShortChain);
+        resolveConsistentVisibility(
+            *graph, mesh, ctx.camera, rays,
+            byteField(s, fields::kConsistent, true, static_cast<size_t>(mesh.faceCount())),
+            byteField(s, fields::kCusp, false, static_cast<size_t>(mesh.vertexCount())),
+            consistent);
+    }
+    const double raySeconds = secondsSince(tRays);
+
+    // Counters.
+    long long visible = 0, concave = 0;
+    for (const ViewChain& c : graph->chains) {
+        visible += c.visible();
+        concave += c.concave;
+    }
+    std::map<ViewNodeType, long long> perType;
+    long long unreliable = 0;
+    for (const ViewNode& n : graph->nodes) {
+        ++perType[n.type];
+        unreliable += n.unreliable;
+    }
+    s.setCounter("chains", static_cast<double>(graph->chains.size()));
+    s.setCounter("visible chains", static_cast<double>(visible));
+    s.setCounter("concave contour chains", static_cast<double>(concave));
+    s.setCounter("nodes", static_cast<double>(graph->nodes.size()));
+    for (ViewNodeType t :
+         {ViewNodeType::CurtainFold, ViewNodeType::BoundaryCurtainFold,
+          ViewNodeType::ImageIntersection, ViewNodeType::ContourBoundaryJunction,
+          ViewNodeType::Bifurcation, ViewNodeType::SurfaceIntersectionEnd, ViewNodeType::CurveEnd})
+        s.setCounter(std::string("nodes: ") + toString(t), static_cast<double>(perType[t]));
+    s.setCounter("T-junctions", static_cast<double>(perType[ViewNodeType::ImageIntersection]));
+    s.setCounter("curtain folds", static_cast<double>(perType[ViewNodeType::CurtainFold]));
+    s.setCounter("surface-intersection curves", static_cast<double>(intersectionCurves));
+    s.setCounter("connected components", static_cast<double>(propagated.components));
+    s.setCounter("ray tests", static_cast<double>(graph->rayTests));
+    s.setCounter("conflicts", static_cast<double>(graph->conflicts.size()));
+    s.setCounter("ray-check conflicts", static_cast<double>(propagated.rayConflicts));
+    s.setCounter("check rays recounted exactly", static_cast<double>(propagated.exactRecounts));
+    s.setCounter("check rays corrected by the exact recount",
+                 static_cast<double>(propagated.correctedRays));
+    s.setCounter("propagation cycle disagreements",
+                 static_cast<double>(propagated.cycleDisagreements));
+    s.setCounter("chains propagated below their bound",
+                 static_cast<double>(propagated.belowLowerBound));
+    s.setCounter("visible length px", graph->visibleLengthPixels());
+    s.setCounter("hidden length px", graph->hiddenLengthPixels());
+    s.setCounter("image segments", static_cast<double>(built.segments));
+    s.setCounter("image segments swept", static_cast<double>(built.sweptSegments));
+    s.setCounter("image crossings", static_cast<double>(built.imageCrossings));
+    s.setCounter("logical crossings ignored", static_cast<double>(built.logicalCrossings));
+    s.setCounter("endpoint touches ignored", static_cast<double>(built.endpointTouches));
+    s.setCounter("overlapping segment pairs", static_cast<double>(built.overlaps));
+    s.setCounter("crossings behind non-fold edges", static_cast<double>(built.nonFoldNear));
+    s.setCounter("fold edges off the curves", static_cast<double>(built.foldOccluderEdges));
+    s.setCounter("T-junctions behind fold edges off the curves",
+                 static_cast<double>(built.foldOccluderJunctions));
+    s.setCounter("curtain folds by the one-ring test alone",
+                 static_cast<double>(built.localOnlyFolds));
+    s.setCounter("curtain folds without a local step", static_cast<double>(built.foldsWithoutStep));
+    s.setCounter("curtain folds occluding the convex side",
+                 static_cast<double>(built.convexFarFolds));
+    s.setCounter("mixed-convexity chains", static_cast<double>(built.mixedConvexityChains));
+    if (flavor == VisibilityFlavor::Consistent)
+        s.setCounter("unreliable near-face nodes", static_cast<double>(unreliable));
+    s.setCounter("surface intersections seconds", intersectionSeconds);
+    s.setCounter("view graph seconds", buildSeconds);
+    s.setCounter("sweep seconds", built.sweepSeconds);
+    s.setCounter("ray scene seconds", sceneSeconds);
+    s.setCounter("ray and QI seconds", raySeconds);
+    s.setCounter("visibility seconds", secondsSince(start));
+
+    // Notes: what a user should know about this result.
+    std::ostringstream note;
+    note << graph->chains.size() << " chains (" << visible << " visible), " << graph->nodes.size()
+         << " nodes (" << perType[ViewNodeType::ImageIntersection] << " T-junctions, "
+         << perType[ViewNodeType::CurtainFold] << " curtain folds), " << graph->rayTests
+         << " ray tests";
+    s.notes.push_back(note.str());
+    if (!graph->conflicts.empty())
+        s.notes.push_back(std::to_string(graph->conflicts.size()) +
+                          " visibility conflicts (a ray test or a bound disagrees with the "
+                          "decided QI); both values are kept on the chain");
+    if (propagated.cycleDisagreements > 0)
+        s.notes.push_back(std::to_string(propagated.cycleDisagreements) +
+                          " propagation links disagree with the QI reached another way");
+    if (built.endpointTouches + built.overlaps + built.equalDepthCrossings > 0)
+        s.notes.push_back(
+            std::to_string(built.endpointTouches + built.overlaps + built.equalDepthCrossings) +
+            " degenerate image crossings (endpoint touches, overlaps, equal "
+            "depths) were not split");
+    if (built.foldsWithoutStep > 0)
+        s.notes.push_back(std::to_string(built.foldsWithoutStep) +
+                          " curtain folds have no one-ring face over either edge (tutorial §4.7 "
+                          "expects at least one): QI is carried across them unchanged");
+    if (flavor == VisibilityFlavor::Consistent && unreliable > 0)
+        s.notes.push_back(std::to_string(unreliable) +
+                          " nodes rest on a near-face test below near-face-epsilon (Bénard 2014 "
+                          "footnote 3; the paper's threshold 1 flags most of them)");
+    if (flavor == VisibilityFlavor::Interpolated)
+        s.notes.push_back("interpolated contours: visibility is a vote of ray tests per chain "
+                          "(tutorial §6.2.4), approximate by design: expect gaps and halos");
+    s.viewGraph = std::move(graph);
+    s.curves = std::make_shared<const std::vector<Polyline>>(std::move(curves));
+}
+
+std::vector<InvariantCheck> checkVisibility(VisibilityFlavor flavor, const PhaseContext&,
+                                            const Snapshot& s) {
+    InvariantCheck negative{"QI is never negative", 0, {}};
+    InvariantCheck decided{"every chain has a decided QI", 0, {}};
+    InvariantCheck concave{
+        "concave contour chains are never visible (unless the mesh intersects itself)", 0, {}};
+    InvariantCheck nodes{"every chain end is a node that lists the chain", 0, {}};
+    std::vector<InvariantCheck> out;
+    if (!s.viewGraph) {
+        out = {negative, decided, nodes};
+        if (flavor == VisibilityFlavor::Mesh)
+            out.push_back(concave);
+        return out;
+    }
+    const ViewGraph& g = *s.viewGraph;
+    // Theorem B.0.1 needs a mesh without self-intersections.
+    const bool selfIntersecting = s.counter("surface-intersection curves", 0.0) > 0.0;
+    auto violate = [](InvariantCheck& c, const std::string& example) {
+        if (c.violations++ == 0)
+            c.firstExample = example;
+    };
+    for (size_t i = 0; i < g.chains.size(); ++i) {
+        const ViewChain& c = g.chains[i];
+        const std::string name = "chain " + std::to_string(i);
+        if (c.qi < 0 && c.decidedBy != VisibilityRule::Unknown)
+            violate(negative, name + " qi " + std::to_string(c.qi));
+        if (c.qi < 0 || c.decidedBy == VisibilityRule::Unknown)
+            violate(decided, name);
+        if (flavor == VisibilityFlavor::Mesh && c.type == CurveType::Contour && c.concave &&
+            c.visible() && !selfIntersecting)
+            violate(concave, name);
+        for (Index end : {c.startNode, c.endNode}) {
+            if (end == kInvalidIndex)
+                continue;
+            const std::vector<Index>& at = g.nodes[end].chains;
+            if (std::find(at.begin(), at.end(), static_cast<Index>(i)) == at.end())
+                violate(nodes, name + " at node " + std::to_string(end));
+        }
+        if (!c.closed && (c.startNode == kInvalidIndex || c.endNode == kInvalidIndex))
+            violate(nodes, name + " (open, no end node)");
+    }
+    out = {negative, decided, nodes};
+    if (flavor == VisibilityFlavor::Mesh)
+        out.push_back(concave);
+    return out;
+}
+
+} // namespace
+
+void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
+    m.parameters.push_back({kVisibility,
+                            "Visibility",
+                            "Build the view graph and decide each chain's quantitative "
+                            "invisibility (tutorial ch. 4; Bénard 2014 §8). Off: the phase "
+                            "passes the curves through.",
+                            ParameterType::Bool,
+                            true,
+                            0,
+                            0,
+                            {}});
+    m.parameters.push_back({kCheckRays,
+                            "Check QI with rays",
+                            "Also ray-test every chain and record each disagreement with the "
+                            "propagated QI as a conflict (tutorial §4.6, debugging invariants). "
+                            "Off: one ray per connected component only.",
+                            ParameterType::Bool,
+                            true,
+                            0,
+                            0,
+                            {}});
+    m.parameters.push_back({kSurfaceIntersections,
+                            "Surface intersections",
+                            "Find the curves where the mesh intersects itself (tutorial §4.2) "
+                            "and add them to the view graph.",
+                            ParameterType::Bool,
+                            true,
+                            0,
+                            0,
+                            {}});
+    if (flavor == VisibilityFlavor::Consistent) {
+        m.parameters.push_back(
+            {kNearFaceEpsilon,
+             "Near-face epsilon",
+             "Bénard 2014 footnote 3: the near-face test of a contour edge is unreliable when "
+             "|v · (w1 − w2)| is below this. Default: the paper's value as extracted, 1, which "
+             "looks suspiciously large (|v · (w1 − w2)| ≤ 2, so most tests are flagged; it may "
+             "have lost an exponent, notes §3.2): treat it as tunable.",
+             ParameterType::Double,
+             1.0,
+             0.0,
+             2.0,
+             {}});
+        m.parameters.push_back({kShortChain,
+                                "Short chain (px)",
+                                "Bénard 2014 §8.4 rule (b): an ambiguous chain between two "
+                                "T-junctions shorter than this, whose mates are visible, becomes "
+                                "visible. The paper gives no value.",
+                                ParameterType::Double,
+                                5.0,
+                                0.0,
+                                1000.0,
+                                {}});
+    }
+    if (flavor == VisibilityFlavor::Interpolated) {
+        m.parameters.push_back({kVotes,
+                                "Ray votes per chain",
+                                "Tutorial §6.2.4: ray tests spread along each chain; the majority "
+                                "decides.",
+                                ParameterType::Int,
+                                5,
+                                1,
+                                101,
+                                {}});
+        m.parameters.push_back({kIgnoreAdjacent,
+                                "Ignore adjacent faces",
+                                "Tutorial §6.2.4: ray tests ignore the faces next to the "
+                                "contour's face (reduces self-occlusion, widens halos).",
+                                ParameterType::Bool,
+                                true,
+                                0,
+                                0,
+                                {}});
+    }
+    const char* description =
+        flavor == VisibilityFlavor::Mesh
+            ? "View graph (tutorial §4.5): curtain folds, Y junctions, bifurcations, "
+              "T-junctions (CGAL sweep line); one ray test per connected piece and QI "
+              "propagation (§4.7)."
+        : flavor == VisibilityFlavor::Consistent
+            ? "View graph on the consistent mesh (Bénard 2014 §8.1–8.3, near-face curtain "
+              "folds), QI propagation, then §8.4: per-segment ray tests, ambiguity, majority "
+              "vote and the ambiguity rules."
+            : "View graph of the interpolated contours (T-junctions, Y junctions), then "
+              "heuristic visibility: a vote of ray tests per chain (tutorial §6.2.4).";
+    m.phases.push_back(
+        {"visibility", description,
+         [flavor](const PhaseContext& ctx, Snapshot& s) { runVisibility(flavor, ctx, s); },
+         [flavor](const PhaseContext& ctx, const Snapshot& s) {
+             return checkVisibility(flavor, ctx, s);
+         }});
+}
+
+} // namespace contour
