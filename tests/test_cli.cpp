@@ -435,16 +435,15 @@ private slots:
         const SvgPolyline& loop = svg.polylines.front();
         QCOMPARE(loop.chain, 0);
         QCOMPARE(loop.type, QString("contour"));
-        // The interpolated contours' heuristic vote (tutorial §6.2.4) may hide
-        // the whole loop of this coarse sphere (its segments lie partly on
-        // back faces, whose rays leave through front faces): it is the
-        // approximate method, so only the exact ones must see it.
+        // Every method sees the loop: the interpolated contours' heuristic
+        // vote (tutorial §6.2.4) ignores the faces sharing a vertex with the
+        // contour's face by default (visibility-ignored-faces), which keeps
+        // a sphere's outline visible although its segments lie partly on
+        // back faces, whose rays leave through front faces.
         const bool exact = method != "interpolated";
-        if (exact) {
-            QCOMPARE(svg.count("visible-contour"), 1);
-            QCOMPARE(loop.layer, QString("visible"));
-            QCOMPARE(loop.qi, 0);
-        }
+        QCOMPARE(svg.count("visible-contour"), 1);
+        QCOMPARE(loop.layer, QString("visible"));
+        QCOMPARE(loop.qi, 0);
         QCOMPARE(loop.type, QString("contour"));
         QVERIFY(loop.closed);
         QVERIFY(loop.points.size() >= 8);
@@ -497,12 +496,15 @@ private slots:
         const double length = curve["length_px"].get<double>();
         QVERIFY(length > 100.0);
         QVERIFY(std::abs(length - polylineLength(loop.points)) < 1e-3 * length);
-        // The view graph: one visible closed chain, no node, no conflict.
+        // The view graph: one visible closed chain, no node, no conflict
+        // (interpolated: the check ray, which ignores the contour's face
+        // only, may be hidden by the neighbours the vote ignores; such a
+        // conflict is by design, README "--strict").
         const nlohmann::json& graph = view["view_graph"];
         QVERIFY(graph.is_object());
         QCOMPARE(graph["chains"].size(), size_t(1));
         QCOMPARE(graph["nodes"].size(), size_t(0));
-        QCOMPARE(graph["totals"]["conflicts"].get<int>(), 0);
+        QVERIFY(graph["totals"]["conflicts"].get<int>() <= (exact ? 0 : 1));
         QVERIFY(graph["chains"][0]["closed"].get<bool>());
         QCOMPARE(graph["chains"][0]["qi"].get<int>(), loop.qi);
         QCOMPARE(graph["chains"][0]["points"].size(), loop.points.size());

@@ -714,6 +714,76 @@ private slots:
         QVERIFY(interp > 0.0);
     }
 
+    // Tutorial §6.2.4's "ignore faces adjacent to the contour's face", per
+    // choice of visibility-ignored-faces, on the sphere, whose outline is one
+    // closed chain (so one vote decides all of it): with vertex-neighbours
+    // (the default) the whole outline must be visible in every view; the
+    // other choices' figures are reported. Each choice must hide no chain
+    // that "face" shows (a wider ignored ring only removes occluders), and
+    // the votes must be spread along the chain (no gap between tested
+    // segments longer than about segments / votes).
+    void interpolatedIgnoredFaces_data() {
+        QTest::addColumn<QString>("ignored");
+        for (const char* c : {"face", "edge-neighbours", "vertex-neighbours"})
+            QTest::newRow(c) << QString(c);
+    }
+    void interpolatedIgnoredFaces() {
+        QFETCH(QString, ignored);
+        const Method& interpolated = *findMethod("interpolated");
+        const ParameterSet defaults = ParameterSet::defaults(interpolated.parameters);
+        QCOMPARE(defaults.getChoice("visibility-ignored-faces"), std::string("vertex-neighbours"));
+        const int votes = defaults.getInt("visibility-votes");
+        const auto cage = shape("sphere", 32);
+        const std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+        ParameterSet chosen, face;
+        chosen.set("visibility-ignored-faces", ignored.toStdString());
+        face.set("visibility-ignored-faces", std::string("face"));
+        double visible = 0, total = 0;
+        int runs = 0, viewsLosingOutline = 0;
+        for (size_t v = 0; v < views.size(); v += kEndToEndStride) {
+            ++runs;
+            const Snapshot s = runMethod("interpolated", cage, views[v], chosen);
+            const Snapshot f = runMethod("interpolated", cage, views[v], face);
+            QVERIFY(s.viewGraph && f.viewGraph);
+            QCOMPARE(s.viewGraph->chains.size(), f.viewGraph->chains.size());
+            bool lost = false;
+            for (size_t ci = 0; ci < s.viewGraph->chains.size(); ++ci) {
+                const ViewChain& c = s.viewGraph->chains[ci];
+                const QString where = QString("view %1 chain %2").arg(v).arg(ci);
+                QVERIFY2(c.visible() || !f.viewGraph->chains[ci].visible(),
+                         qPrintable(where + ": hidden, but visible when ignoring its face only"));
+                std::vector<size_t> tested;
+                for (size_t i = 0; i < c.segmentRayQi.size(); ++i)
+                    if (c.segmentRayQi[i] >= 0)
+                        tested.push_back(i);
+                const size_t n = c.segmentCount();
+                QCOMPARE(tested.size(), std::min<size_t>(size_t(votes), n));
+                size_t gap = tested.front() + (n - 1 - tested.back());
+                for (size_t k = 1; k < tested.size(); ++k)
+                    gap = std::max(gap, tested[k] - tested[k - 1] - 1);
+                QVERIFY2(
+                    gap <= n / tested.size() + 1,
+                    qPrintable(where +
+                               QString(": %1 untested segments in a row of %2").arg(gap).arg(n)));
+                if (c.type != CurveType::Contour)
+                    continue;
+                total += c.lengthPixels;
+                if (c.visible())
+                    visible += c.lengthPixels;
+                else
+                    lost = true;
+            }
+            viewsLosingOutline += lost ? 1 : 0;
+        }
+        qInfo("sphere, ignored faces %s, %d votes, %d views: visible outline %.0f of %.0f px "
+              "(%.1f %%), %d views lose (part of) the outline",
+              qPrintable(ignored), votes, runs, visible, total, 100 * visible / total,
+              viewsLosingOutline);
+        QVERIFY(total > 0.0);
+        if (ignored == "vertex-neighbours")
+            QCOMPARE(viewsLosingOutline, 0);
+    }
+
     // The simplification phase on real graphs (every method, a bumpy torus
     // with many small chains): its post-conditions hold, it hides only short
     // visible chains, and the visibility snapshot keeps the unsimplified

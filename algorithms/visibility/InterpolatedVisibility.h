@@ -9,13 +9,34 @@
 #include "mesh/TriangleMesh.h"
 #include "pipeline/ViewGraph.h"
 
+#include <optional>
+#include <string>
+
 namespace contour {
 
 class RayCaster;
 
+// Which faces a ray test from a contour segment ignores (tutorial §6.2.4,
+// "ignore faces adjacent to the contour's face"; the tutorial does not say
+// how far "adjacent" reaches).
+enum class IgnoredFaces {
+    Face,            // the segment's own face only (the point lies on it)
+    EdgeNeighbours,  // the face and the faces sharing an edge with it
+    VertexNeighbours // every face sharing a vertex with it (its one-ring)
+};
+
+// "face", "edge-neighbours", "vertex-neighbours": the parameter's choices.
+const char* toString(IgnoredFaces ignored);
+std::optional<IgnoredFaces> ignoredFacesFromString(const std::string& name);
+
 // Tutorial §6.2.4: every chain gets `votes` ray tests spread along it, ignoring the faces
 // adjacent to the contour's face; majority decides; decidedBy = HeuristicVote.
+// (ignoreAdjacentFaces: EdgeNeighbours when true, Face when false.)
 void voteInterpolatedVisibility(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
                                 const RayCaster& rays, int votes, bool ignoreAdjacentFaces);
+
+// The same with the ignored faces chosen explicitly.
+void voteInterpolatedVisibility(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
+                                const RayCaster& rays, int votes, IgnoredFaces ignored);
 
 } // namespace contour

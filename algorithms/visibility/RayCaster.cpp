@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <embree3/rtcore.h>
 #include <limits>
 #include <stdexcept>
@@ -140,9 +141,41 @@ RayCaster::~RayCaster() {
 
 int RayCaster::exactOccluders(const Vec3& p, const Camera& camera,
                               std::span<const Index> ignore) const {
+    // Conservative pre-filter (same count; on a 119k-face consistent mesh
+    // the 7 recounts of a view took ~40 ms of the phase without it, issue
+    // 5's timing). A face crossed by
+    // the segment p–eye (or ray p + t·d) contains a point z of it, so its
+    // vertices cannot all lie strictly on one side of a plane through that
+    // line. Two such planes, normals u, v ⟂ d in floating point: the
+    // rounding of u·d (|u·d| ≤ ~1e-16 |d|) and of (x − p)·u is below
+    // `margin` by six orders of magnitude, so a face skipped here is one
+    // crossesExactly would reject.
+    const Vec3 toEye = camera.toCamera(p);
+    const double length = toEye.norm();
+    std::vector<std::uint8_t> side; // per vertex: bits 0-3 = u>m, u<-m, v>m, v<-m
+    if (length > 0.0 && std::isfinite(length)) {
+        const Vec3 d = toEye / length;
+        const int axis = std::abs(d.x()) < std::abs(d.y())
+                             ? (std::abs(d.x()) < std::abs(d.z()) ? 0 : 2)
+                             : (std::abs(d.y()) < std::abs(d.z()) ? 1 : 2);
+        const Vec3 u = d.cross(Vec3::Unit(axis)).normalized();
+        const Vec3 v = d.cross(u).normalized();
+        const double reach = impl_->sceneExtent + impl_->sceneCenter.norm() + p.norm() +
+                             (camera.isOrthographic() ? 0.0 : length);
+        const double margin = 1e-9 * reach;
+        side.resize(impl_->positions.size());
+        for (size_t i = 0; i < impl_->positions.size(); ++i) {
+            const Vec3 x = impl_->positions[i] - p;
+            const double su = x.dot(u), sv = x.dot(v);
+            side[i] = static_cast<std::uint8_t>((su > margin) | ((su < -margin) << 1) |
+                                                ((sv > margin) << 2) | ((sv < -margin) << 3));
+        }
+    }
     int count = 0;
     for (size_t f = 0; f < impl_->triangles.size(); ++f) {
         const Triangle& t = impl_->triangles[f];
+        if (!side.empty() && (side[t[0]] & side[t[1]] & side[t[2]]) != 0)
+            continue;
         if (crossesExactly(impl_->positions[t[0]], impl_->positions[t[1]], impl_->positions[t[2]],
                            p, camera) &&
             std::find(ignore.begin(), ignore.end(), static_cast<Index>(f)) == ignore.end())

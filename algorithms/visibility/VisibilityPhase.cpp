@@ -21,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 
 namespace contour {
 
@@ -32,7 +33,7 @@ constexpr const char* kNearFaceEpsilon = "near-face-epsilon";
 constexpr const char* kShortChain = "ambiguity-short-chain";
 constexpr const char* kSurfaceIntersections = "surface-intersections";
 constexpr const char* kVotes = "visibility-votes";
-constexpr const char* kIgnoreAdjacent = "visibility-ignore-adjacent";
+constexpr const char* kIgnoredFaces = "visibility-ignored-faces";
 
 // Surface intersections depend on the mesh only: the mesh and interpolated
 // methods share one mesh between views (and the tessellation is cached), so
@@ -155,17 +156,39 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     QiPropagationOptions propagation;
     propagation.checkRays = ctx.parameters.getBool(kCheckRays);
     QiPropagationStats propagated;
+    double qiSeconds = 0.0, checkSeconds = 0.0, consistentSeconds = 0.0;
+    const auto tQi = std::chrono::steady_clock::now();
     if (flavor == VisibilityFlavor::Interpolated) {
         // Tutorial §6.2.4: interpolated contours lie inside faces, not on the
         // mesh's folds, so the +2/+1 propagation rules do not hold for them;
         // the heuristic vote decides, and the check rays say where it
         // disagrees with a single ray.
+        const std::optional<IgnoredFaces> ignored =
+            ignoredFacesFromString(ctx.parameters.getChoice(kIgnoredFaces));
+        if (!ignored)
+            throw std::invalid_argument("unknown " + std::string(kIgnoredFaces) + " '" +
+                                        ctx.parameters.getChoice(kIgnoredFaces) + "'");
         voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, ctx.parameters.getInt(kVotes),
-                                   ctx.parameters.getBool(kIgnoreAdjacent));
-        if (propagation.checkRays)
+                                   *ignored);
+        qiSeconds = secondsSince(tQi);
+        if (propagation.checkRays) {
+            const auto tCheck = std::chrono::steady_clock::now();
             checkChainsWithRays(*graph, mesh, ctx.camera, rays, "the heuristic vote", &propagated);
+            checkSeconds = secondsSince(tCheck);
+        }
     } else {
+        // The check rays run here rather than inside propagateQi (the same
+        // call on the same graph and stats, right after it) so that their
+        // time is reported apart: they are optional (issue 5's timing).
+        const bool check = propagation.checkRays;
+        propagation.checkRays = false;
         propagateQi(*graph, mesh, ctx.camera, rays, propagation, &propagated);
+        qiSeconds = secondsSince(tQi);
+        if (check) {
+            const auto tCheck = std::chrono::steady_clock::now();
+            checkChainsWithRays(*graph, mesh, ctx.camera, rays, "propagation", &propagated);
+            checkSeconds = secondsSince(tCheck);
+        }
     }
     ctx.checkCancelled();
 
@@ -173,11 +196,13 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         ConsistentVisibilityOptions consistent;
         consistent.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
         consistent.shortChainPixels = ctx.parameters.getDouble(kShortChain);
+        const auto tConsistent = std::chrono::steady_clock::now();
         resolveConsistentVisibility(
             *graph, mesh, ctx.camera, rays,
             byteField(s, fields::kConsistent, true, static_cast<size_t>(mesh.faceCount())),
             byteField(s, fields::kCusp, false, static_cast<size_t>(mesh.vertexCount())),
             consistent);
+        consistentSeconds = secondsSince(tConsistent);
     }
     const double raySeconds = secondsSince(tRays);
 
@@ -241,6 +266,13 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter("sweep seconds", built.sweepSeconds);
     s.setCounter("ray scene seconds", sceneSeconds);
     s.setCounter("ray and QI seconds", raySeconds);
+    // Its parts: propagation with one ray per component (or the heuristic
+    // votes), the optional check rays, Bénard 2014 §8.4.
+    s.setCounter(flavor == VisibilityFlavor::Interpolated ? "vote seconds" : "propagation seconds",
+                 qiSeconds);
+    s.setCounter("check rays seconds", checkSeconds);
+    if (flavor == VisibilityFlavor::Consistent)
+        s.setCounter("consistent visibility seconds", consistentSeconds);
     s.setCounter("visibility seconds", secondsSince(start));
 
     // Notes: what a user should know about this result.
@@ -272,7 +304,9 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                           "footnote 3; the paper's threshold 1 flags most of them)");
     if (flavor == VisibilityFlavor::Interpolated)
         s.notes.push_back("interpolated contours: visibility is a vote of ray tests per chain "
-                          "(tutorial §6.2.4), approximate by design: expect gaps and halos");
+                          "ignoring the contour's " +
+                          ctx.parameters.getChoice(kIgnoredFaces) +
+                          " (tutorial §6.2.4), approximate by design: expect gaps and halos");
     s.viewGraph = std::move(graph);
     s.curves = std::make_shared<const std::vector<Polyline>>(std::move(curves));
 }
@@ -390,15 +424,20 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
                                 1,
                                 101,
                                 {}});
-        m.parameters.push_back({kIgnoreAdjacent,
-                                "Ignore adjacent faces",
-                                "Tutorial §6.2.4: ray tests ignore the faces next to the "
-                                "contour's face (reduces self-occlusion, widens halos).",
-                                ParameterType::Bool,
-                                true,
-                                0,
-                                0,
-                                {}});
+        m.parameters.push_back(
+            {kIgnoredFaces,
+             "Ignored faces",
+             "Tutorial §6.2.4: the faces a ray test ignores, to avoid the contour's own surface "
+             "occluding it: face (the contour's face only), edge-neighbours (and the faces "
+             "sharing an edge with it) or vertex-neighbours (every face sharing a vertex with "
+             "it). Wider rings reduce self-occlusion and widen halos. Default vertex-neighbours: "
+             "the only one that keeps a sphere's outline visible.",
+             ParameterType::Choice,
+             std::string(toString(IgnoredFaces::VertexNeighbours)),
+             0,
+             0,
+             {toString(IgnoredFaces::Face), toString(IgnoredFaces::EdgeNeighbours),
+              toString(IgnoredFaces::VertexNeighbours)}});
     }
     const char* description =
         flavor == VisibilityFlavor::Mesh
