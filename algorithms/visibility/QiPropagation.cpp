@@ -96,8 +96,7 @@ int chainRayQi(const ViewChain& chain, const TriangleMesh& mesh, const Camera& c
 }
 
 void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
-                 const RayCaster& rays, const QiPropagationOptions& options,
-                 QiPropagationStats* statsOut) {
+                 const RayCaster& rays, QiPropagationStats* statsOut) {
     QiPropagationStats stats;
     const size_t n = graph.chains.size();
     const std::vector<std::vector<Link>> adjacency = links(graph);
@@ -182,8 +181,6 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
     }
 
     graph.rayTests += stats.seedRays;
-    if (options.checkRays)
-        checkChainsWithRays(graph, mesh, camera, rays, "propagation", &stats);
     if (statsOut)
         *statsOut = stats;
 }

@@ -3,8 +3,8 @@
 // 1967 and Markosian 1997): one ray test per connected piece of the view
 // graph, then QI carried through its nodes: equal across a node without a
 // singularity, + the node's step behind a T-junction or a curtain fold, the
-// local one-ring counts at Y junctions and bifurcations. Optionally every
-// chain is ray-tested too, and each disagreement is kept as a conflict.
+// local one-ring counts at Y junctions and bifurcations. checkChainsWithRays
+// then ray-tests every chain and keeps each disagreement as a conflict.
 #include "camera/Camera.h"
 #include "mesh/TriangleMesh.h"
 #include "pipeline/ViewGraph.h"
@@ -14,10 +14,6 @@
 namespace contour {
 
 class RayCaster;
-
-struct QiPropagationOptions {
-    bool checkRays = true; // ray-test every chain and record disagreements
-};
 
 struct QiPropagationStats {
     long long components = 0;
@@ -44,7 +40,6 @@ void checkChainsWithRays(ViewGraph& graph, const TriangleMesh& mesh, const Camer
                          QiPropagationStats* stats);
 
 void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
-                 const RayCaster& rays, const QiPropagationOptions& options,
-                 QiPropagationStats* stats = nullptr);
+                 const RayCaster& rays, QiPropagationStats* stats = nullptr);
 
 } // namespace contour

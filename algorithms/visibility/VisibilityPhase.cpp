@@ -153,8 +153,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     const auto tRays = std::chrono::steady_clock::now();
     const RayCaster rays(mesh);
     const double sceneSeconds = secondsSince(tRays);
-    QiPropagationOptions propagation;
-    propagation.checkRays = ctx.parameters.getBool(kCheckRays);
+    const bool checkRays = ctx.parameters.getBool(kCheckRays);
     QiPropagationStats propagated;
     double qiSeconds = 0.0, checkSeconds = 0.0, consistentSeconds = 0.0;
     const auto tQi = std::chrono::steady_clock::now();
@@ -171,20 +170,15 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, ctx.parameters.getInt(kVotes),
                                    *ignored);
         qiSeconds = secondsSince(tQi);
-        if (propagation.checkRays) {
+        if (checkRays) {
             const auto tCheck = std::chrono::steady_clock::now();
             checkChainsWithRays(*graph, mesh, ctx.camera, rays, "the heuristic vote", &propagated);
             checkSeconds = secondsSince(tCheck);
         }
     } else {
-        // The check rays run here rather than inside propagateQi (the same
-        // call on the same graph and stats, right after it) so that their
-        // time is reported apart: they are optional (issue 5's timing).
-        const bool check = propagation.checkRays;
-        propagation.checkRays = false;
-        propagateQi(*graph, mesh, ctx.camera, rays, propagation, &propagated);
+        propagateQi(*graph, mesh, ctx.camera, rays, &propagated);
         qiSeconds = secondsSince(tQi);
-        if (check) {
+        if (checkRays) {
             const auto tCheck = std::chrono::steady_clock::now();
             checkChainsWithRays(*graph, mesh, ctx.camera, rays, "propagation", &propagated);
             checkSeconds = secondsSince(tCheck);
