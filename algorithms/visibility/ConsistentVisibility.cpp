@@ -31,6 +31,7 @@
 //   non-ambiguous segments (else of all its tested segments), at least 1.
 #include "visibility/ConsistentVisibility.h"
 
+#include "visibility/NearFaceTest.h"
 #include "visibility/RayCaster.h"
 
 #include <algorithm>
@@ -62,29 +63,6 @@ bool reliableCuspNode(const ViewGraph& g, Index node) {
 
 Index otherEnd(const ViewChain& c, Index node) {
     return c.startNode == node ? c.endNode : c.startNode;
-}
-
-// Bénard 2014 footnote 3: |v·(w1 − w2)|, the margin of the near-face test
-// on the edge's two faces (small = unreliable).
-double nearFaceMargin(const TriangleMesh& mesh, const Camera& camera, Index edge) {
-    const Index h = mesh.edgeHalfedge(edge);
-    if (mesh.isBoundary(h))
-        return 0.0;
-    const Index o = mesh.opposite(h);
-    const Vec3 a = mesh.position(mesh.from(h)), b = mesh.position(mesh.to(h));
-    const Vec3 m = 0.5 * (a + b);
-    const Vec3 v = camera.toCamera(m).normalized();
-    auto inFace = [&](Index he) -> Vec3 {
-        const Index f = TriangleMesh::face(he);
-        const Vec3 p = mesh.position(mesh.to(TriangleMesh::next(he)));
-        const Vec3 n = mesh.faceNormal(f);
-        Vec3 w = v - v.dot(n) * n;
-        if (w.norm() < 1e-12)
-            return Vec3::Zero();
-        w.normalize();
-        return w.dot(p - m) < 0.0 ? Vec3(-w) : w;
-    };
-    return std::abs(v.dot(inFace(h) - inFace(o)));
 }
 
 int median(std::vector<int> values) {
@@ -175,7 +153,7 @@ ChainVote voteChain(const ViewGraph& g, ViewChain& c, const TriangleMesh& mesh,
         if (c.type == CurveType::Contour && c.concave) {
             const bool unreliableInterior =
                 edge != kInvalidIndex &&
-                nearFaceMargin(mesh, camera, edge) < options.nearFaceEpsilon;
+                nearFace(mesh, camera, edge).margin < options.nearFaceEpsilon;
             if (!nextToCusp && !unreliableInterior) {
                 ++hidden;
                 ++interior;

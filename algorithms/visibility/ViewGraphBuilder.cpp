@@ -3,6 +3,7 @@
 #include "geometry/Predicates.h"
 #include "visibility/ImageIntersections.h"
 #include "visibility/LocalOcclusion.h"
+#include "visibility/NearFaceTest.h"
 
 #include <algorithm>
 #include <chrono>
@@ -126,26 +127,11 @@ private:
                 // FRONTSIDE(a, b, d, e) > 0 (tutorial app. C).
                 result.concave = frontSide(a, b, p1, p2) > 0;
             } else if (options_.foldTest == CurtainFoldTest::NearFace) {
-                // Bénard 2014 §8.1 footnote 3: the view vector projected into
-                // each face, pointing towards the face's opposite vertex; the
-                // face whose in-face vector is closer to the view is near.
-                const Vec3 m = 0.5 * (a + b);
-                const Vec3 v = camera_.toCamera(m).normalized();
-                auto inFace = [&](Index f, const Vec3& apex) {
-                    const Vec3 n = mesh_.faceNormal(f);
-                    Vec3 w = v - v.dot(n) * n;
-                    if (w.norm() < 1e-300)
-                        return Vec3(Vec3::Zero());
-                    w.normalize();
-                    return Vec3(w.dot(apex - m) < 0.0 ? Vec3(-w) : w);
-                };
-                const Index f1 = TriangleMesh::face(h), f2 = TriangleMesh::face(o);
-                const Vec3 w1 = inFace(f1, p1), w2 = inFace(f2, p2);
-                const double d = v.dot(w1 - w2);
-                const Index nearFace = d > 0.0 ? f1 : f2;
-                // Exterior: the near face has a front-facing VBO.
-                result.concave = !(orientation_[nearFace] > 0);
-                result.unreliable = std::abs(d) < options_.nearFaceEpsilon;
+                // Bénard 2014 §8.1: exterior iff the near face (footnote 3)
+                // has a front-facing VBO.
+                const NearFace near = nearFace(mesh_, camera_, e);
+                result.concave = !(orientation_[near.face] > 0);
+                result.unreliable = near.margin < options_.nearFaceEpsilon;
             }
         }
         edgeClass_[e] = result;
