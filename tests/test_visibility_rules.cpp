@@ -592,7 +592,7 @@ private slots:
     // should have none left either, but its contour near the real cusps is
     // cut by the view graph's near-face curtain folds (30-48 per view where
     // the smooth torus has 4 cusps) into chains of 1-3 segments, all of them
-    // "adjacent to a cusp" or to an inconsistent face: an expected failure,
+    // "adjacent to a cusp" or to an inconsistent face: a measured ceiling,
     // with the figures printed.
     void consistentEndToEnd_data() {
         QTest::addColumn<QString>("shapeName");
@@ -656,12 +656,16 @@ private slots:
               qPrintable(shapeName), runs, chains, ambiguous, ambiguousLength, ambiguousRaysVisible,
               conflicts, visible, total, qPrintable(histogram));
         QVERIFY(total > 0.0);
-        if (!sphere)
-            QEXPECT_FAIL("torus",
-                         "short chains next to cusps and inconsistent faces stay ambiguous "
-                         "(figures above)",
-                         Continue);
-        QCOMPARE(ambiguous, 0);
+        if (sphere) {
+            QCOMPARE(ambiguous, 0);
+        } else {
+            // Known gap (README, closing note): measured 75 of 320 chains
+            // (447 of 12866 px) left ambiguous on the 9 Release views. A
+            // ceiling just above it, so a regression fails; 0 is the goal.
+            QVERIFY2(ambiguous <= chains / 4, "more torus chains left ambiguous than measured");
+            QVERIFY2(ambiguousLength <= 0.04 * total,
+                     "more torus contour length left ambiguous than measured");
+        }
     }
 
     // Interpolated contours' heuristic visibility (tutorial §6.2.4) against
