@@ -20,6 +20,7 @@
 
 #include "visibility/LocalOcclusion.h"
 #include "visibility/RayCaster.h"
+#include "visibility/ViewGraphBuilder.h"
 
 #include <algorithm>
 #include <atomic>
@@ -28,25 +29,6 @@
 namespace contour {
 
 namespace {
-
-// The faces a segment lies on: its face, or the two faces of its edge.
-std::vector<Index> ownFaces(const TriangleMesh& mesh, const ViewChain& c, size_t i) {
-    std::vector<Index> faces;
-    if (i >= c.segmentElement.size() || c.segmentElement[i] == kInvalidIndex)
-        return faces;
-    const Index element = c.segmentElement[i];
-    if (c.source == SegmentSource::Face) {
-        faces.push_back(element);
-        if (i < c.segmentSecondFace.size() && c.segmentSecondFace[i] != kInvalidIndex)
-            faces.push_back(c.segmentSecondFace[i]);
-    } else {
-        const Index h = mesh.edgeHalfedge(element);
-        faces.push_back(TriangleMesh::face(h));
-        if (!mesh.isBoundary(h))
-            faces.push_back(TriangleMesh::face(mesh.opposite(h)));
-    }
-    return faces;
-}
 
 void addEdgeNeighbours(const TriangleMesh& mesh, std::vector<Index>& faces) {
     const size_t own = faces.size();
@@ -115,7 +97,7 @@ void voteInterpolatedVisibility(ViewGraph& graph, const TriangleMesh& mesh, cons
         std::vector<int> counts;
         for (size_t j = 0; j < k; ++j) {
             const size_t i = std::min(n - 1, static_cast<size_t>((j + 0.5) * n / k));
-            std::vector<Index> ignore = ownFaces(mesh, c, i);
+            std::vector<Index> ignore = segmentFaces(mesh, c, i);
             if (ignored == IgnoredFaces::EdgeNeighbours)
                 addEdgeNeighbours(mesh, ignore);
             else if (ignored == IgnoredFaces::VertexNeighbours)

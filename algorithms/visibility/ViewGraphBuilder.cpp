@@ -834,7 +834,10 @@ ViewGraph buildViewGraph(const ViewGraphInput& input, const Camera& camera,
 
 std::vector<Index> segmentFaces(const TriangleMesh& mesh, const ViewChain& chain, size_t segment) {
     std::vector<Index> faces;
-    const Index element = chain.segmentElement[segment];
+    const Index element =
+        segment < chain.segmentElement.size() ? chain.segmentElement[segment] : kInvalidIndex;
+    if (element == kInvalidIndex)
+        return faces;
     if (chain.source == SegmentSource::MeshEdge) {
         const Index h = mesh.edgeHalfedge(element);
         faces.push_back(TriangleMesh::face(h));

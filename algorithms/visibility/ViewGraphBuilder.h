@@ -84,7 +84,7 @@ ViewGraph buildViewGraph(const ViewGraphInput& input, const Camera& camera,
 
 // The faces adjacent to segment `segment` of a chain: the edge's faces, the
 // face itself, or both faces of a surface-intersection segment. Ray tests
-// ignore them (tutorial app. C.1).
+// ignore them (tutorial app. C.1). None for a segment with no element.
 std::vector<Index> segmentFaces(const TriangleMesh& mesh, const ViewChain& chain, size_t segment);
 
 } // namespace contour
