@@ -4,6 +4,7 @@
 // nothing.
 //
 //   bench_contours --faces 10000,100000,1000000 --views 26 --csv bench.csv
+#include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
@@ -101,33 +102,15 @@ void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
     heap::release(p);
 }
 
+using contour::bench::loadAverage;
+using contour::bench::statusKb;
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// A field of /proc/self/status in kB ("VmRSS", "VmHWM"), or -1 if unreadable.
-long long statusKb(const std::string& key) {
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind(key + ":", 0) == 0) {
-            std::istringstream fields(line.substr(key.size() + 1));
-            long long kb = -1;
-            fields >> kb;
-            return kb;
-        }
-    return -1;
-}
-
-std::string loadAverage() {
-    std::ifstream in("/proc/loadavg");
-    std::string one, five, fifteen;
-    in >> one >> five >> fifteen;
-    return in ? one + " " + five + " " + fifteen : std::string("unknown");
 }
 
 // CPU time of the whole process (all threads), in seconds.

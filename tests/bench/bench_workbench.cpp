@@ -1,0 +1,214 @@
+// bench_workbench: the two figures issue 6 asks for, measured on the real
+// main window. A benchmark: it prints figures and asserts nothing.
+//
+//   xvfb-run -a -s "-screen 0 1920x1200x24" bench_workbench
+//       [--meshes-dir DIR] [--orbit-mesh NAME] [--orbit-method M] [--frames N]
+//       [--step-mesh NAME] [--width W] [--height H] [--out figures.csv]
+//
+// Part 1, orbit frame rate: the orbit model (default controlmesh with the
+// consistent method: about 117k faces at its last phase, every 3D overlay
+// and the view graph available) is run to the end; every overlay is switched
+// on; then the 3D view is orbited N times by 360/N degrees, each frame
+// rendered synchronously (QWidget::repaint, which runs VTK's render in
+// paintGL); frames per second = N / wall time. The render count of the view
+// is checked to have grown by N (a frame that was not drawn is not counted).
+//
+// Part 2, step latency: the step model (default bob_quad: its consistent
+// output is about 48.5k faces) is reset to the input and stepped one phase
+// at a time; per phase, the wall time from MainWindow::stepPhase() until the
+// window is idle again and both views have repainted with the new snapshot,
+// next to the phase's own Snapshot::phaseSeconds (the rest is the window:
+// post-condition checks, snapshot-to-VTK conversion, rendering).
+//
+// Under Xvfb, rendering is Mesa's llvmpipe on the CPU: a desktop GPU is
+// faster. The figures say which renderer ran.
+#include "BenchSupport.h"
+#include "ImageView2D.h"
+#include "MainWindow.h"
+#include "SceneView3D.h"
+#include "SurfaceFormat.h"
+#include "pipeline/Runner.h"
+#include "pipeline/Snapshot.h"
+
+#include <CLI/CLI.hpp>
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+
+using namespace contour;
+using namespace contour::bench;
+
+namespace {
+
+// The GL renderer string of the 3D view's context (llvmpipe under Xvfb).
+std::string rendererName(SceneView3D* view) {
+    view->makeCurrent();
+    const QOpenGLContext* context = QOpenGLContext::currentContext();
+    std::string name = "unknown";
+    if (context) {
+        const auto* s = context->functions()->glGetString(GL_RENDERER);
+        if (s)
+            name = reinterpret_cast<const char*>(s);
+    }
+    view->doneCurrent();
+    return name;
+}
+
+// Opens `path`, switches to `method` and waits for the run to end.
+bool openAndRun(MainWindow& window, const std::filesystem::path& path, const QString& method) {
+    if (!window.openMesh(QString::fromStdString(path.string())) || !window.waitForIdle(3600000))
+        return false;
+    if (window.methodName() != method &&
+        (!window.setMethod(method) || !window.waitForIdle(3600000)))
+        return false;
+    return window.lastError().isEmpty() && window.runner() && window.runner()->atEnd();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"The workbench (issue 6): orbit frame rate of the 3D view with overlays on a "
+                 "large mesh, and the time from a phase step to updated views."};
+    std::string meshesDir = CONTOUR_SHARED_DIR "/meshes";
+    std::string orbitMesh = "controlmesh";
+    std::string orbitMethod = "consistent";
+    std::string stepMesh = "bob_quad";
+    int frames = 120;
+    int width = 1600;
+    int height = 1000;
+    std::string outPath;
+    app.add_option("--meshes-dir", meshesDir, "Folder of the meshes")->capture_default_str();
+    app.add_option("--orbit-mesh", orbitMesh, "Model orbited (file name without extension)")
+        ->capture_default_str();
+    app.add_option("--orbit-method", orbitMethod, "Method run on the orbited model")
+        ->capture_default_str();
+    app.add_option("--frames", frames, "Frames of the orbit (one full turn)")
+        ->check(CLI::Range(4, 100000))
+        ->capture_default_str();
+    app.add_option("--step-mesh", stepMesh, "Model stepped phase by phase (consistent method)")
+        ->capture_default_str();
+    app.add_option("--width", width, "Main window width")->capture_default_str();
+    app.add_option("--height", height, "Main window height")->capture_default_str();
+    app.add_option("--out", outPath, "Write the figures to this CSV file");
+    // CLI11 sees the arguments before Qt removes its own.
+    CLI11_PARSE(app, argc, argv);
+
+    setDefaultSurfaceFormat();
+    QApplication qapp(argc, argv);
+    std::ofstream csv;
+    if (!outPath.empty()) {
+        csv.open(outPath);
+        if (!csv) {
+            std::fprintf(stderr, "bench_workbench: cannot write %s\n", outPath.c_str());
+            return 1;
+        }
+        csv << "part,mesh,method,phase,faces,frames,seconds,fps,phase seconds\n";
+    }
+
+    MainWindow window;
+    window.setInteractive(false);
+    window.resize(width, height);
+    window.show();
+    QApplication::processEvents();
+    std::printf("bench_workbench: load average %s, window %dx%d\n", loadAverage().c_str(), width,
+                height);
+
+    // Part 1: orbit.
+    if (const auto path = findMeshFile(meshesDir, orbitMesh)) {
+        const QElapsedTimer runTimer = [] {
+            QElapsedTimer t;
+            t.start();
+            return t;
+        }();
+        if (!openAndRun(window, *path, QString::fromStdString(orbitMethod))) {
+            std::printf("orbit: %s with %s did not run to the end: %s\n", orbitMesh.c_str(),
+                        orbitMethod.c_str(), qPrintable(window.lastError()));
+        } else {
+            SceneView3D* view = window.sceneView();
+            int overlaysOn = 0;
+            for (int i = 0; i < kSceneOverlayCount; ++i) {
+                const auto overlay = static_cast<SceneOverlay>(i);
+                view->setOverlayEnabled(overlay, true);
+                overlaysOn += view->isOverlayShown(overlay) ? 1 : 0;
+            }
+            const Snapshot s = window.currentSnapshot();
+            const std::size_t faces = s.mesh ? s.mesh->faceCount() : 0;
+            view->repaint(); // the first frame builds the GL buffers: not timed
+            const int rendersBefore = view->renderCount();
+            QElapsedTimer timer;
+            timer.start();
+            for (int f = 0; f < frames; ++f) {
+                view->orbit(360.0 / frames, 0.0);
+                view->repaint();
+            }
+            view->makeCurrent();
+            QOpenGLContext::currentContext()->functions()->glFinish();
+            view->doneCurrent();
+            const double seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
+            const int drawn = view->renderCount() - rendersBefore;
+            const double fps = drawn / seconds;
+            std::printf("orbit: %s, %s method (%.1f s to run), %zu faces, %d of %d overlays shown "
+                        "and the view graph %s; view %dx%d px, renderer %s\n",
+                        orbitMesh.c_str(), orbitMethod.c_str(),
+                        static_cast<double>(runTimer.elapsed()) * 1e-3, faces, overlaysOn,
+                        kSceneOverlayCount, view->hasViewGraph() ? "drawn" : "absent",
+                        view->width(), view->height(), rendererName(view).c_str());
+            std::printf("orbit: %d frames requested, %d rendered, %.2f s: %.1f frames per "
+                        "second (%.1f ms per frame)\n",
+                        frames, drawn, seconds, fps, 1e3 * seconds / std::max(drawn, 1));
+            if (csv)
+                csv << "orbit," << orbitMesh << ',' << orbitMethod << ",," << faces << ',' << drawn
+                    << ',' << seconds << ',' << fps << ",\n";
+        }
+    } else {
+        std::printf("orbit: %s not found in %s: skipped\n", orbitMesh.c_str(), meshesDir.c_str());
+    }
+
+    // Part 2: step latency.
+    if (const auto path = findMeshFile(meshesDir, stepMesh)) {
+        if (!openAndRun(window, *path, QStringLiteral("consistent"))) {
+            std::printf("step: %s did not run to the end: %s\n", stepMesh.c_str(),
+                        qPrintable(window.lastError()));
+        } else {
+            window.resetPhases();
+            window.waitForIdle();
+            const int phases = window.runner()->phaseCount();
+            double total = 0.0;
+            double totalPhase = 0.0;
+            for (int p = 0; p < phases; ++p) {
+                QElapsedTimer timer;
+                timer.start();
+                window.stepPhase();
+                if (!window.waitForIdle(3600000))
+                    break;
+                window.sceneView()->repaint();
+                window.imageView()->repaint();
+                const double seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
+                const Snapshot s = window.currentSnapshot();
+                const std::size_t faces = s.mesh ? s.mesh->faceCount() : 0;
+                total += seconds;
+                totalPhase += s.phaseSeconds;
+                std::printf("step: %-22s %7zu faces  %7.3f s to updated views (phase %.3f s, "
+                            "window %.3f s)\n",
+                            s.phaseName.c_str(), faces, seconds, s.phaseSeconds,
+                            seconds - s.phaseSeconds);
+                if (csv)
+                    csv << "step," << stepMesh << ",consistent," << s.phaseName << ',' << faces
+                        << ",," << seconds << ",," << s.phaseSeconds << '\n';
+            }
+            std::printf("step: %s, %d phases: %.3f s in all to updated views, of which %.3f s "
+                        "in the phases\n",
+                        stepMesh.c_str(), phases, total, totalPhase);
+        }
+    } else {
+        std::printf("step: %s not found in %s: skipped\n", stepMesh.c_str(), meshesDir.c_str());
+    }
+    return 0;
+}

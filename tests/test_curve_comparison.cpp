@@ -1,0 +1,151 @@
+// Comparing two methods' drawings in the image (issue 6, item 4): the parts
+// of one side's curves with no curve of the other within the tolerance, on
+// hand-made polylines whose answer is known, on hand-made view graphs, and on
+// real runs (a method against itself differs nowhere; mesh against
+// consistent contours (both on the limit surface) on the torus differs somewhere, and less than all).
+#include "ContourTestSupport.h"
+#include "export/CurveComparison.h"
+#include "pipeline/ViewGraph.h"
+
+#include <QtTest>
+
+using namespace contour;
+using namespace contour::testing;
+
+namespace {
+
+ImagePolyline square(double x0, double y0, double side, bool closed = true) {
+    ImagePolyline s{{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
+    if (closed)
+        s.push_back(s.front());
+    return s;
+}
+
+} // namespace
+
+class TestCurveComparison : public QObject {
+    Q_OBJECT
+
+private slots:
+    void knownDifferences_data();
+    void knownDifferences();
+    void symmetric();
+    void drawnCurvesOfAViewGraph();
+    void realRuns();
+};
+
+void TestCurveComparison::knownDifferences_data() {
+    QTest::addColumn<double>("shift");     // B is A moved right by this many px
+    QTest::addColumn<bool>("dropBottom");  // B lacks A's bottom side (y = 10)
+    QTest::addColumn<double>("tolerance"); // px
+    QTest::addColumn<double>("onlyInA");   // expected length, px
+    QTest::addColumn<double>("onlyInB");
+    QTest::addColumn<double>("slack"); // allowed error, px
+
+    // A 100 px square from (10, 10).
+    QTest::newRow("identical") << 0.0 << false << 1.0 << 0.0 << 0.0 << 0.0;
+    QTest::newRow("within tolerance") << 0.8 << false << 1.0 << 0.0 << 0.0 << 0.0;
+    // The vertical sides are 5 px apart: one whole, the other but for the
+    // tolerance at each end where the other side's horizontal ones pass; the
+    // horizontal sides overlap but for 5 px minus the tolerance at one end.
+    QTest::newRow("shifted") << 5.0 << false << 1.0 << 100.0 + 98.0 + 2 * 4.0
+                             << 100.0 + 98.0 + 2 * 4.0 << 1.5;
+    // The side missing from B, but for the tolerance at both ends where the
+    // vertical sides are near.
+    QTest::newRow("side missing") << 0.0 << true << 2.0 << 100.0 - 2 * 2.0 << 0.0 << 1.0;
+}
+
+void TestCurveComparison::knownDifferences() {
+    QFETCH(double, shift);
+    QFETCH(bool, dropBottom);
+    QFETCH(double, tolerance);
+    QFETCH(double, onlyInA);
+    QFETCH(double, onlyInB);
+    QFETCH(double, slack);
+    const std::vector<ImagePolyline> a{square(10, 10, 100)};
+    std::vector<ImagePolyline> b;
+    if (dropBottom)
+        b.push_back({{110 + shift, 10}, {110 + shift, 110}, {10 + shift, 110}, {10 + shift, 10}});
+    else
+        b.push_back(square(10 + shift, 10, 100));
+    const CurveDifference d = compareCurves(a, b, tolerance);
+    QCOMPARE(d.lengthA, 400.0);
+    QCOMPARE(d.lengthB, dropBottom ? 300.0 : 400.0);
+    QVERIFY2(std::abs(d.onlyInALength - onlyInA) <= slack,
+             qPrintable(QString("only in A %1 px, expected %2").arg(d.onlyInALength).arg(onlyInA)));
+    QVERIFY2(std::abs(d.onlyInBLength - onlyInB) <= slack,
+             qPrintable(QString("only in B %1 px, expected %2").arg(d.onlyInBLength).arg(onlyInB)));
+    // Every unmatched point is farther than the tolerance from B.
+    for (const ImagePolyline& run : d.onlyInA)
+        for (const Vec2& p : run)
+            QCOMPARE(compareCurves({{p, p}}, b, tolerance).onlyInA.size(), std::size_t(1));
+    QCOMPARE(d.onlyInA.empty(), onlyInA == 0.0);
+}
+
+void TestCurveComparison::symmetric() {
+    const std::vector<ImagePolyline> a{square(0, 0, 50), {{200, 0}, {260, 40}}};
+    const std::vector<ImagePolyline> b{square(3, 0, 50, false)};
+    const CurveDifference ab = compareCurves(a, b, 1.5);
+    const CurveDifference ba = compareCurves(b, a, 1.5);
+    QCOMPARE(ab.onlyInALength, ba.onlyInBLength);
+    QCOMPARE(ab.onlyInBLength, ba.onlyInALength);
+    QCOMPARE(ab.onlyInA.size(), ba.onlyInB.size());
+    // The lone segment is entirely in A only.
+    QVERIFY(ab.onlyInALength >= std::hypot(60.0, 40.0) - 1e-9);
+}
+
+void TestCurveComparison::drawnCurvesOfAViewGraph() {
+    auto graph = std::make_shared<ViewGraph>();
+    auto chain = [](int qi, bool simplified, double y) {
+        ViewChain c;
+        c.image = {{0, y}, {10, y}};
+        c.points = {{0, y, 0}, {10, y, 0}};
+        c.qi = qi;
+        c.simplifiedAway = simplified;
+        return c;
+    };
+    graph->chains = {chain(0, false, 0), chain(1, false, 5), chain(0, true, 10),
+                     chain(0, false, 15), chain(-1, false, 20)};
+    Snapshot s;
+    s.viewGraph = graph;
+    const std::vector<ImagePolyline> drawn = drawnCurves(s, Camera{});
+    QCOMPARE(drawn.size(), std::size_t(2)); // the visible ones only
+    QCOMPARE(drawn[0][0].y(), 0.0);
+    QCOMPARE(drawn[1][0].y(), 15.0);
+}
+
+void TestCurveComparison::realRuns() {
+    const auto torus = shape("torus", 24);
+    const BoundingBox box = torus->boundingBox();
+    const std::vector<Camera> views = protocolViews(box, 0);
+    // The mesh method on the same Catmull-Clark limit surface as the
+    // consistent method (its default is the cage itself).
+    ParameterSet limit;
+    limit.set("surface", std::string("catmull-clark"));
+    limit.set("tessellation-level", 2);
+    int differing = 0;
+    for (std::size_t v = 0; v < views.size(); v += 5) {
+        const Snapshot mesh = runMethod("mesh", torus, views[v], limit);
+        const Snapshot again = runMethod("mesh", torus, views[v], limit);
+        const Snapshot consistent = runMethod("consistent", torus, views[v]);
+        const auto m = drawnCurves(mesh, views[v]);
+        const auto c = drawnCurves(consistent, views[v]);
+        QVERIFY(!m.empty() && !c.empty());
+        const CurveDifference same = compareCurves(m, drawnCurves(again, views[v]), 1.0);
+        QCOMPARE(same.onlyInALength, 0.0);
+        QCOMPARE(same.onlyInBLength, 0.0);
+        const CurveDifference d = compareCurves(m, c, 2.0);
+        qInfo("view %zu: mesh %.0f px, consistent %.0f px; only mesh %.1f px, only consistent "
+              "%.1f px",
+              v, d.lengthA, d.lengthB, d.onlyInALength, d.onlyInBLength);
+        // Both draw the same silhouette up to the tessellation: most of each
+        // side matches, not all of it.
+        QVERIFY(d.onlyInALength < 0.5 * d.lengthA);
+        QVERIFY(d.onlyInBLength < 0.5 * d.lengthB);
+        differing += d.onlyInALength + d.onlyInBLength > 0.0;
+    }
+    QVERIFY(differing > 0);
+}
+
+QTEST_GUILESS_MAIN(TestCurveComparison)
+#include "test_curve_comparison.moc"
