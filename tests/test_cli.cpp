@@ -4,6 +4,7 @@
 // left behind when it fails.
 #include "contours/Methods.h"
 #include "export/JsonReport.h"
+#include "export/SessionFile.h"
 #include "export/SvgWriter.h"
 #include "mesh/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
@@ -787,6 +788,111 @@ private slots:
         r = run({"--mesh", sphere_, "--json", out + "/same.out", "--ply", out + "/same.out"});
         QCOMPARE(r.exitCode, 2);
         QVERIFY2(r.err.contains("--json and --ply name the same file"), qPrintable(r.err));
+    }
+
+    // Batch parity with the workbench's diagnostic snapshot (issue 6 item
+    // 7): --snapshot-dir writes the report, SVG, PLY and session of the run
+    // (no PNG); they agree with each other and with --json.
+    void snapshotDir() {
+        const QString out = freshOutputDir("snapshot");
+        const QString spot = CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj";
+        const RunResult r = run({"--mesh", spot, "--method", "consistent", "--snapshot-dir",
+                                 out + "/snap/", "--json", out + "/r.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(filesIn(out), QStringList({"r.json"}));
+        QStringList files = filesIn(out + "/snap");
+        files.sort();
+        QCOMPARE(files,
+                 QStringList({"mesh.ply", "report.json", "session.cwsession", "view-2d.svg"}));
+        const nlohmann::json report = readJson(out + "/snap/report.json");
+        const nlohmann::json& view = report["views"][0];
+        QCOMPARE(view["camera"], readJson(out + "/r.json")["views"][0]["camera"]);
+        QCOMPARE(report["method"], readJson(out + "/r.json")["method"]);
+        const nlohmann::json& counters = view["totals"]["counters"];
+        QCOMPARE(view["inconsistent_faces"].size(), counters["inconsistent faces"].get<size_t>());
+        for (const nlohmann::json& face : view["inconsistent_faces"])
+            for (const char* key : {"face", "vertices", "reason", "vbo", "facing", "vertex_labels",
+                                    "g", "neighbours", "changed_by_phase_name"})
+                QVERIFY2(face.contains(key), key);
+        QCOMPARE(report["snapshot"]["phase_reached"].get<int>(),
+                 view["completed_phases"].get<int>());
+        const SvgFile svg = readSvg(out + "/snap/view-2d.svg");
+        QVERIFY2(svg.ok, qPrintable(svg.error));
+        QVERIFY(!svg.polylines.empty());
+        PlyLabels labels;
+        const PolygonMesh mesh = readMesh((out + "/snap/mesh.ply").toStdString(), &labels);
+        QCOMPARE(mesh.faceCount(), counters["faces"].get<int>());
+        const std::vector<int>& consistent = labels.faceLabels[fields::kConsistent];
+        QCOMPARE(static_cast<int>(std::count(consistent.begin(), consistent.end(), 0)),
+                 counters["inconsistent faces"].get<int>());
+        const Session session = readSession((out + "/snap/session.cwsession").toStdString());
+        QCOMPARE(session.method, std::string("consistent"));
+        QCOMPARE(session.phaseReached, view["completed_phases"].get<int>());
+        QCOMPARE(QFileInfo(QString::fromStdString(session.meshPath)).canonicalFilePath(),
+                 QFileInfo(spot).canonicalFilePath());
+
+        // --views26: one sub-folder per view.
+        const QString views = freshOutputDir("snapshot-views26");
+        const RunResult r26 =
+            run({"--mesh", sphere_, "--views26", "--snapshot-dir", views + "/snap"});
+        QVERIFY2(r26.exitCode == 0, qPrintable(r26.err));
+        QCOMPARE(QDir(views + "/snap").entryList(QDir::Dirs | QDir::NoDotAndDotDot).size(), 26);
+        QCOMPARE(filesIn(views + "/snap/view25").size(), 4);
+    }
+
+    // --session runs what a session holds (here the snapshot's own session):
+    // the same camera, parameters, phase and result; flags override
+    // parameters; the mesh, method and camera cannot be given twice.
+    void sessionRun() {
+        const QString out = freshOutputDir("session");
+        RunResult r = run({"--mesh", sphere_, "--method", "interpolated", "--phase", "3",
+                           "--normal-weighting", "angle", "--snapshot-dir", out + "/snap"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QString session = out + "/snap/session.cwsession";
+        r = run({"--session", session, "--json", out + "/again.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json first = readJson(out + "/snap/report.json");
+        const nlohmann::json again = readJson(out + "/again.json");
+        QCOMPARE(again["method"], first["method"]);
+        QCOMPARE(again["views"][0]["camera"], first["views"][0]["camera"]);
+        QCOMPARE(again["views"][0]["completed_phases"].get<int>(), 3);
+        QCOMPARE(again["views"][0]["totals"]["counters"], first["views"][0]["totals"]["counters"]);
+
+        r = run({"--session", session, "--normal-weighting", "max", "--phase", "1", "--json",
+                 out + "/override.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json overridden = readJson(out + "/override.json");
+        QCOMPARE(overridden["method"]["parameters"]["normal-weighting"].get<std::string>(),
+                 std::string("max"));
+        QCOMPARE(overridden["views"][0]["completed_phases"].get<int>(), 1);
+
+        r = run({"--session", session, "--mesh", sphere_});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("--session cannot be combined with --mesh"), qPrintable(r.err));
+        writeText(path("broken.cwsession"), "{\"format\": \"contour-workbench-session\"}");
+        r = run({"--session", path("broken.cwsession")});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("broken.cwsession") && r.err.contains("\"version\" is missing"),
+                 qPrintable(r.err));
+    }
+
+    // A snapshot file that cannot be written fails the run and takes every
+    // other output along; the folder it made is removed again.
+    void snapshotDirUnwritable() {
+        const QString out = freshOutputDir("snapshot-unwritable");
+        QVERIFY(QDir().mkpath(out + "/snap/view-2d.svg/inside"));
+        RunResult r =
+            run({"--mesh", sphere_, "--json", out + "/r.json", "--snapshot-dir", out + "/snap"});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains("snap/view-2d.svg: cannot write"), qPrintable(r.err));
+        QCOMPARE(filesIn(out), QStringList());
+        QCOMPARE(
+            QDir(out + "/snap").entryList(QDir::AllEntries | QDir::Hidden | QDir::NoDotAndDotDot),
+            QStringList({"view-2d.svg"}));
+        r = run({"--mesh", sphere_, "--views26", "--snapshot-dir", out + "/new/snap"});
+        QCOMPARE(r.exitCode, 1); // the parent folder does not exist
+        QVERIFY2(r.err.contains("new/snap: cannot write"), qPrintable(r.err));
+        QVERIFY(!QFileInfo::exists(out + "/new"));
     }
 
     // --strict turns counted post-condition violations into exit code 3 (a

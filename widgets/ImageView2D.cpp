@@ -3,17 +3,20 @@
 #include "SceneColors.h"
 
 #include <QFontMetricsF>
+#include <QMouseEvent>
 #include <QPaintEvent>
 #include <QPainter>
 #include <algorithm>
+#include <limits>
 
 namespace contour {
 
 namespace {
 
 constexpr double kMargin = 12.0;
-constexpr double kGlyphSize = 9.0;       // node glyphs, in screen pixels
-constexpr double kVisibleWidth = 2.0;    // screen pixels
+constexpr double kGlyphSize = 9.0;    // node glyphs, in screen pixels
+constexpr double kVisibleWidth = 2.0; // screen pixels
+constexpr double kComparisonHighlightWidth = 9.0;
 constexpr double kHiddenWidth = 1.5;     // screen pixels
 constexpr double kSimplifiedWidth = 1.0; // screen pixels
 
@@ -53,7 +56,7 @@ void drawGlyph(QPainter& painter, const QPointF& c, NodeGlyph glyph, const QColo
         painter.drawPolygon(QPolygonF({c + QPointF(0, -1.3 * r), c + QPointF(1.3 * r, 0),
                                        c + QPointF(0, 1.3 * r), c + QPointF(-1.3 * r, 0)}));
         break;
-    case NodeGlyph::Triangle:
+    case NodeGlyph::TriangleUp:
         painter.drawPolygon(QPolygonF(
             {c + QPointF(-1.2 * r, r), c + QPointF(1.2 * r, r), c + QPointF(0, -1.3 * r)}));
         break;
@@ -117,6 +120,7 @@ void ImageView2D::setScene(const Snapshot& snapshot, const Camera& camera) {
         }
     }
     graph_ = snapshot.viewGraph;
+    mesh_ = snapshot.mesh;
     if (graph_) {
         long long visible = 0, hidden = 0;
         for (const ViewChain& chain : graph_->chains) {
@@ -145,8 +149,83 @@ void ImageView2D::clearScene() {
     paths_.clear();
     caption_.clear();
     graph_.reset();
+    mesh_.reset();
+    comparison_.reset();
     rebuildViewGraph();
     update();
+}
+
+namespace {
+
+QPainterPath pathOf(const std::vector<ImagePolyline>& lines) {
+    QPainterPath path;
+    for (const ImagePolyline& line : lines) {
+        if (line.size() < 2)
+            continue;
+        path.moveTo(line.front().x(), line.front().y());
+        for (std::size_t i = 1; i < line.size(); ++i)
+            path.lineTo(line[i].x(), line[i].y());
+    }
+    return path;
+}
+
+} // namespace
+
+void ImageView2D::setComparison(const QString& thisLabel, const QString& otherLabel,
+                                const std::vector<ImagePolyline>& otherCurves,
+                                const CurveDifference& difference) {
+    comparison_ = Comparison{thisLabel,
+                             otherLabel,
+                             pathOf(otherCurves),
+                             pathOf(difference.onlyInA),
+                             pathOf(difference.onlyInB),
+                             difference};
+    update();
+}
+
+void ImageView2D::clearComparison() {
+    comparison_.reset();
+    update();
+}
+
+QString ImageView2D::comparisonCaption() const {
+    if (!comparison_)
+        return {};
+    const CurveDifference& d = comparison_->difference;
+    return tr("only %1: %2 of %3 px · only %4: %5 of %6 px (farther than %7 px)")
+        .arg(comparison_->thisLabel)
+        .arg(d.onlyInALength, 0, 'f', 0)
+        .arg(d.lengthA, 0, 'f', 0)
+        .arg(comparison_->otherLabel)
+        .arg(d.onlyInBLength, 0, 'f', 0)
+        .arg(d.lengthB, 0, 'f', 0)
+        .arg(d.tolerancePixels, 0, 'g', 2);
+}
+
+void ImageView2D::paintComparison(QPainter& painter, const QRectF& frame) const {
+    painter.save();
+    painter.setClipRect(frame);
+    const double scale = frame.width() / camera_->viewport.width;
+    painter.translate(frame.topLeft());
+    painter.scale(scale, scale);
+    QColor here = sceneColors::kComparisonOnlyHere.toQColor();
+    QColor other = sceneColors::kComparisonOther.toQColor();
+    here.setAlphaF(static_cast<float>(sceneColors::kComparisonHighlightOpacity));
+    QColor otherHighlight = other;
+    otherHighlight.setAlphaF(static_cast<float>(sceneColors::kComparisonHighlightOpacity));
+    painter.setPen(linePen(here, kComparisonHighlightWidth, Qt::SolidLine));
+    painter.drawPath(comparison_->onlyHere);
+    painter.setPen(linePen(otherHighlight, kComparisonHighlightWidth, Qt::SolidLine));
+    painter.drawPath(comparison_->onlyOther);
+    painter.setPen(linePen(other, 1.0, Qt::SolidLine));
+    painter.drawPath(comparison_->other);
+    painter.restore();
+    // The lengths, above the viewport size at the bottom, wrapped.
+    painter.save();
+    const QRectF box(frame.left() + 4.0, frame.bottom() - 58.0, frame.width() - 8.0, 38.0);
+    painter.setPen(QColor(30, 30, 30));
+    painter.drawText(box, Qt::AlignLeft | Qt::AlignBottom | Qt::TextWordWrap, comparisonCaption());
+    painter.restore();
 }
 
 void ImageView2D::setShowHiddenCurves(bool show) {
@@ -283,8 +362,10 @@ QPointF ImageView2D::toWidget(const Vec2& imagePixel) const {
 
 std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
     std::vector<LegendEntry> entries;
-    if (!graph_)
+    if (!graph_) {
+        appendComparisonLegend(entries);
         return entries;
+    }
     // Only what is drawn: the legend explains the picture.
     std::array<bool, 5> qiShown{}; // unknown, 0, 1, 2, 3+
     for (const DrawnChain& d : chains_) {
@@ -325,7 +406,22 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
                                .arg(tr(style.label))
                                .arg(drawn_.nodesByType[static_cast<size_t>(t)])});
     }
+    appendComparisonLegend(entries);
     return entries;
+}
+
+void ImageView2D::appendComparisonLegend(std::vector<LegendEntry>& entries) const {
+    if (!comparison_)
+        return;
+    QColor here = sceneColors::kComparisonOnlyHere.toQColor();
+    QColor other = sceneColors::kComparisonOther.toQColor();
+    entries.push_back({LegendEntry::Line, other, NodeGlyph::Square, comparison_->otherLabel});
+    here.setAlphaF(static_cast<float>(sceneColors::kComparisonHighlightOpacity));
+    other.setAlphaF(static_cast<float>(sceneColors::kComparisonHighlightOpacity));
+    entries.push_back({LegendEntry::WideLine, here, NodeGlyph::Square,
+                       tr("only %1").arg(comparison_->thisLabel)});
+    entries.push_back({LegendEntry::WideLine, other, NodeGlyph::Square,
+                       tr("only %1").arg(comparison_->otherLabel)});
 }
 
 QRectF ImageView2D::legendRect() const {
@@ -400,6 +496,10 @@ void ImageView2D::paintLegend(QPainter& painter) const {
             painter.setPen(linePen(e.color, kHiddenWidth, Qt::DashLine));
             painter.drawLine(left, right);
             break;
+        case LegendEntry::WideLine:
+            painter.setPen(linePen(e.color, kComparisonHighlightWidth, Qt::SolidLine));
+            painter.drawLine(left, right);
+            break;
         case LegendEntry::Glyph:
             drawGlyph(painter, 0.5 * (left + right), e.glyph, e.color, kGlyphSize);
             break;
@@ -442,14 +542,186 @@ void ImageView2D::paintEvent(QPaintEvent*) {
         painter.restore();
     }
 
+    if (comparison_)
+        paintComparison(painter, frame);
+
     painter.setPen(QPen(QColor(60, 60, 60), 1.0));
     painter.setBrush(Qt::NoBrush);
     painter.drawRect(frame);
     painter.drawText(
         frame.adjusted(4, 2, -4, -2), Qt::AlignRight | Qt::AlignBottom,
         QStringLiteral("%1 × %2").arg(camera_->viewport.width).arg(camera_->viewport.height));
-    if (graph_)
+    paintHighlight(painter, frame);
+    if (graph_ || comparison_)
         paintLegend(painter);
+}
+
+Vec2 ImageView2D::toImage(const QPointF& widgetPoint) const {
+    const QRectF frame = imageRect();
+    if (!camera_ || frame.width() <= 0.0)
+        return Vec2::Zero();
+    const double scale = frame.width() / camera_->viewport.width;
+    const QPointF p = (widgetPoint - frame.topLeft()) / scale;
+    return {p.x(), p.y()};
+}
+
+Selection ImageView2D::pick(const QPointF& position) const {
+    if (!camera_)
+        return {};
+    const QRectF frame = imageRect();
+    if (!frame.contains(position))
+        return {};
+    const double scale = frame.width() / camera_->viewport.width;
+    const Vec2 click = toImage(position);
+    // Chains: the nearest drawn polyline, in widget pixels.
+    Index bestChain = kInvalidIndex;
+    double bestDistance = kPickPixels / scale;
+    for (const DrawnChain& d : chains_) {
+        QPointF previous;
+        for (int i = 0; i < d.path.elementCount(); ++i) {
+            const QPainterPath::Element e = d.path.elementAt(i);
+            const QPointF point(e.x, e.y);
+            if (e.isLineTo()) {
+                const Vec2 a(previous.x(), previous.y()), b(point.x(), point.y());
+                const Vec2 ab = b - a;
+                const double s = ab.squaredNorm() > 0.0
+                                     ? std::clamp((click - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
+                                     : 0.0;
+                const double distance = (a + s * ab - click).norm();
+                // Later chains are painted on top: ties go to them.
+                if (distance <= bestDistance) {
+                    bestDistance = distance;
+                    bestChain = d.chain;
+                }
+            }
+            previous = point;
+        }
+    }
+    if (bestChain != kInvalidIndex)
+        return Selection::chain(bestChain);
+    // Faces: the nearest one (depth interpolated at the click) whose
+    // projection holds the click.
+    if (!mesh_)
+        return {};
+    const Camera& camera = *camera_;
+    std::vector<ProjectedPoint> projected(static_cast<size_t>(mesh_->vertexCount()));
+    for (Index v = 0; v < mesh_->vertexCount(); ++v)
+        projected[static_cast<size_t>(v)] = camera.project(mesh_->position(v));
+    Index bestFace = kInvalidIndex;
+    double bestDepth = std::numeric_limits<double>::infinity();
+    for (Index f = 0; f < mesh_->faceCount(); ++f) {
+        const Triangle& t = mesh_->triangle(f);
+        const ProjectedPoint& a = projected[static_cast<size_t>(t[0])];
+        const ProjectedPoint& b = projected[static_cast<size_t>(t[1])];
+        const ProjectedPoint& c = projected[static_cast<size_t>(t[2])];
+        if (!(a.depth > 0.0 && b.depth > 0.0 && c.depth > 0.0))
+            continue;
+        const Vec2 ab = b.pixel - a.pixel, ac = c.pixel - a.pixel, ap = click - a.pixel;
+        const double det = ab.x() * ac.y() - ab.y() * ac.x();
+        if (!(std::abs(det) > 0.0))
+            continue;
+        const double s = (ap.x() * ac.y() - ap.y() * ac.x()) / det;
+        const double r = (ab.x() * ap.y() - ab.y() * ap.x()) / det;
+        if (s < 0.0 || r < 0.0 || s + r > 1.0)
+            continue;
+        const double depth = (1.0 - s - r) * a.depth + s * b.depth + r * c.depth;
+        if (depth < bestDepth) {
+            bestDepth = depth;
+            bestFace = f;
+        }
+    }
+    return bestFace == kInvalidIndex ? Selection() : Selection::face(bestFace);
+}
+
+void ImageView2D::setHighlight(const Selection& selection) {
+    highlight_ = selection;
+    update();
+}
+
+void ImageView2D::paintHighlight(QPainter& painter, const QRectF& frame) const {
+    if (highlight_.isEmpty() || !camera_)
+        return;
+    const Camera& camera = *camera_;
+    const QColor color = sceneColors::kSelection.toQColor();
+    const double width = sceneColors::kSelectionLineWidth;
+    // Widget point of a 3D point, or nothing behind the eye.
+    const auto widgetPoint = [&](const Vec3& p) -> std::optional<QPointF> {
+        const ProjectedPoint q = camera.project(p);
+        if (!(q.depth > 0.0) || !q.pixel.allFinite())
+            return std::nullopt;
+        return toWidget(q.pixel);
+    };
+    painter.save();
+    painter.setClipRect(frame);
+    painter.setBrush(Qt::NoBrush);
+    painter.setPen(linePen(color, width, Qt::SolidLine));
+    const Index id = highlight_.id;
+    switch (highlight_.kind) {
+    case SelectionKind::Face:
+        if (mesh_ && id >= 0 && id < mesh_->faceCount()) {
+            const Triangle& t = mesh_->triangle(id);
+            QPolygonF polygon;
+            for (int i = 0; i < 3; ++i)
+                if (const auto p = widgetPoint(mesh_->position(t[i])))
+                    polygon << *p;
+            if (polygon.size() == 3) {
+                QColor fill = color;
+                fill.setAlpha(90);
+                painter.setBrush(fill);
+                painter.drawPolygon(polygon);
+            }
+        }
+        break;
+    case SelectionKind::Vertex:
+        if (mesh_ && id >= 0 && id < mesh_->vertexCount())
+            if (const auto p = widgetPoint(mesh_->position(id)))
+                painter.drawEllipse(*p, 6.0, 6.0);
+        break;
+    case SelectionKind::Edge:
+        if (mesh_ && id >= 0 && id < mesh_->edgeCount()) {
+            const Index h = mesh_->edgeHalfedge(id);
+            const auto a = widgetPoint(mesh_->position(mesh_->from(h)));
+            const auto b = widgetPoint(mesh_->position(mesh_->to(h)));
+            if (a && b)
+                painter.drawLine(*a, *b);
+        }
+        break;
+    case SelectionKind::Chain:
+        for (const DrawnChain& d : chains_)
+            if (d.chain == id) {
+                const double scale = frame.width() / camera.viewport.width;
+                painter.translate(frame.topLeft());
+                painter.scale(scale, scale);
+                painter.setPen(linePen(color, width + 2.0, Qt::SolidLine));
+                painter.drawPath(d.path);
+                break;
+            }
+        break;
+    case SelectionKind::None:
+        break;
+    }
+    painter.restore();
+}
+
+void ImageView2D::mousePressEvent(QMouseEvent* event) {
+    if (event->button() == Qt::LeftButton) {
+        leftPressed_ = true;
+        pressPosition_ = event->position();
+        event->accept();
+        return;
+    }
+    QWidget::mousePressEvent(event);
+}
+
+void ImageView2D::mouseReleaseEvent(QMouseEvent* event) {
+    if (event->button() != Qt::LeftButton || !leftPressed_) {
+        QWidget::mouseReleaseEvent(event);
+        return;
+    }
+    leftPressed_ = false;
+    event->accept();
+    if ((event->position() - pressPosition_).manhattanLength() <= kClickSlopPixels)
+        emit pickRequested(pick(event->position()));
 }
 
 } // namespace contour

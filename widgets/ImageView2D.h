@@ -9,8 +9,10 @@
 // hidden by topological simplification left out (or very faint, optional),
 // coloured by QI or by chain (ViewGraphStyle.h), with one glyph per node type
 // and a legend of what is drawn.
+#include "Selection.h"
 #include "ViewGraphStyle.h"
 #include "camera/Camera.h"
+#include "export/CurveComparison.h"
 #include "pipeline/Snapshot.h"
 
 #include <QPainterPath>
@@ -64,11 +66,47 @@ public:
     // The legend's box in widget coordinates (empty without a view graph).
     QRectF legendRect() const;
 
+    // Comparison with a second method (issue 6, item 4; the caller computes
+    // the difference with compareCurves): the other method's drawn curves
+    // thin on top, the parts only one method draws highlighted underneath,
+    // and a caption with the lengths. Kept until cleared or replaced.
+    void setComparison(const QString& thisLabel, const QString& otherLabel,
+                       const std::vector<ImagePolyline>& otherCurves,
+                       const CurveDifference& difference);
+    void clearComparison();
+    bool showsComparison() const { return comparison_.has_value(); }
+    // The difference shown, or null.
+    const CurveDifference* comparison() const {
+        return comparison_ ? &comparison_->difference : nullptr;
+    }
+    // The comparison caption's text (empty without a comparison).
+    QString comparisonCaption() const;
+
+    // Linked selection (Selection.h). What a click at `position` (widget
+    // coordinates) hits: the nearest drawn view-graph chain within
+    // kPickPixels, else the front-most mesh face under the click (projected
+    // with the analysis camera), else nothing.
+    Selection pick(const QPointF& position) const;
+    static constexpr double kPickPixels = 5.0;
+    // A press and release further apart than this is not a click.
+    static constexpr double kClickSlopPixels = 4.0;
+    // Draws the selected element in sceneColors::kSelection over the
+    // picture: a face's projected outline, a vertex's ring, an edge, a
+    // chain.
+    void setHighlight(const Selection& selection);
+    const Selection& highlight() const { return highlight_; }
+
     QSize sizeHint() const override { return {640, 480}; }
     QSize minimumSizeHint() const override { return {120, 90}; }
 
+signals:
+    // A left click: what pick() found there (possibly nothing).
+    void pickRequested(const Selection& selection);
+
 protected:
     void paintEvent(QPaintEvent* event) override;
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
 
 private:
     struct ProjectedCurve {
@@ -85,7 +123,7 @@ private:
         std::array<int, kViewNodeTypeCount> nodesByType{};
     };
     struct LegendEntry {
-        enum Kind { Line, DashedLine, Glyph } kind;
+        enum Kind { Line, DashedLine, WideLine, Glyph } kind;
         QColor color;
         NodeGlyph glyph = NodeGlyph::Square;
         QString text;
@@ -97,6 +135,18 @@ private:
     std::vector<LegendEntry> legendEntries() const;
     void paintViewGraph(QPainter& painter, const QRectF& frame) const;
     void paintLegend(QPainter& painter) const;
+    void paintHighlight(QPainter& painter, const QRectF& frame) const;
+    // The analysis camera's pixel under a widget point.
+    Vec2 toImage(const QPointF& widgetPoint) const;
+
+    struct Comparison {
+        QString thisLabel, otherLabel;
+        QPainterPath other, onlyHere, onlyOther; // in image pixels
+        CurveDifference difference;
+    };
+    void paintComparison(QPainter& painter, const QRectF& frame) const;
+    void appendComparisonLegend(std::vector<LegendEntry>& entries) const;
+    std::optional<Comparison> comparison_;
 
     std::optional<Camera> camera_;
     std::vector<ProjectedCurve> paths_;
@@ -110,6 +160,12 @@ private:
     bool showSimplified_ = false;
     bool showNodes_ = true;
     ChainColoring coloring_ = ChainColoring::ByQi;
+
+    // Linked selection.
+    std::shared_ptr<const TriangleMesh> mesh_;
+    Selection highlight_;
+    QPointF pressPosition_;
+    bool leftPressed_ = false;
 };
 
 } // namespace contour

@@ -38,6 +38,13 @@ inline constexpr SceneColor kInconsistentOutline{1.0, 0.0, 1.0};   // magenta, h
 inline constexpr SceneColor kRadialTint{1.0, 0.50, 0.05};          // orange, hue ~28°
 inline constexpr SceneColor kStandardRadialTint{0.10, 0.70, 0.65}; // teal, hue ~177°
 inline constexpr double kRadialTintOpacity = 0.6;
+// Method comparison in the 2D view: the other method's curves thin in blue;
+// the parts only one method draws under wide translucent highlights, red
+// for the window's method (the 2D view draws nothing else red; T-junctions
+// are orange), blue for the other.
+inline constexpr SceneColor kComparisonOther{0.15, 0.45, 0.95};    // blue, hue ~219°
+inline constexpr SceneColor kComparisonOnlyHere{0.90, 0.10, 0.10}; // red, hue 0°
+inline constexpr double kComparisonHighlightOpacity = 0.45;
 inline constexpr SceneColor kRadialEdge{0.12, 0.12, 0.12}; // charcoal
 inline constexpr SceneColor kContourVertex{1.0, 1.0, 1.0}; // white
 inline constexpr SceneColor kCuspVertex{0.0, 0.90, 1.0};   // cyan, hue ~186°
@@ -45,6 +52,12 @@ inline constexpr double kInconsistentOutlineWidth = 3.0;   // pixels
 inline constexpr double kRadialEdgeWidth = 2.5;            // pixels
 inline constexpr double kContourVertexSize = 7.0;          // pixels
 inline constexpr double kCuspVertexSize = 15.0;            // pixels
+// Linked selection (Selection.h): the selected face, vertex, edge or chain in
+// both views, a lime no other colour of the views is near (hue ~87°), drawn
+// unlit over everything in 3D.
+inline constexpr SceneColor kSelection{0.55, 1.0, 0.0};
+inline constexpr double kSelectionLineWidth = 4.0;  // pixels
+inline constexpr double kSelectionPointSize = 14.0; // pixels
 // Signed scalar fields (DivergingColorMap.h): Moreland's cool-to-warm end
 // colours at -m and +m (the centre, 0, is a light grey, ~0.87), NaN in a
 // darker neutral grey. Contours are black over a scalar field, which has red

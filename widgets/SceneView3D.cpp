@@ -5,14 +5,21 @@
 #include "VtkCameraConversion.h"
 
 #include <QFileInfo>
+#include <QMouseEvent>
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
 #include <span>
 #include <vtkCamera.h>
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCellPicker.h>
 #include <vtkCoordinate.h>
 #include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
 #include <vtkTextProperty.h>
@@ -284,6 +291,21 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     nodeLayers_[1].mapper->SetRelativeCoincidentTopologyPointOffsetParameter(-120.0);
     ren->AddActor(nodeLayers_[1].actor);
 
+    // The selection's highlight, over everything like the inconsistent
+    // outlines.
+    highlightActor_->SetMapper(highlightMapper_);
+    highlightMapper_->ScalarVisibilityOff();
+    setColor(highlightActor_->GetProperty(), sceneColors::kSelection);
+    highlightActor_->GetProperty()->SetLineWidth(
+        static_cast<float>(sceneColors::kSelectionLineWidth));
+    highlightActor_->GetProperty()->SetPointSize(
+        static_cast<float>(sceneColors::kSelectionPointSize));
+    highlightActor_->GetProperty()->RenderPointsAsSpheresOn();
+    highlightActor_->GetProperty()->LightingOff();
+    highlightActor_->VisibilityOff();
+    highlightActor_->PickableOff();
+    overlayRenderer_->AddActor(highlightActor_);
+
     frustumActor_->SetMapper(frustumMapper_);
     setColor(frustumActor_->GetProperty(), sceneColors::kFrustum);
     frustumActor_->GetProperty()->SetLineWidth(1.5f);
@@ -340,7 +362,9 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
         curveCount_ = static_cast<int>(curves.size());
     }
     updateViewGraph();
+    updateHighlight();
     requestRender();
+    emit snapshotChanged();
 }
 
 void SceneView3D::setColorField(const std::string& field) {
@@ -683,7 +707,9 @@ void SceneView3D::clearScene() {
     curveActor_->VisibilityOff();
     updateViewGraph();
     frustumActor_->VisibilityOff();
+    updateHighlight();
     requestRender();
+    emit snapshotChanged();
 }
 
 void SceneView3D::setAnalysisCamera(const Camera& camera) {
@@ -746,6 +772,184 @@ void SceneView3D::beforeRender() {
         QMetaObject::invokeMethod(
             this, [this, matches] { emit viewMatchChanged(matches); }, Qt::QueuedConnection);
     }
+}
+
+Selection SceneView3D::pick(const QPointF& position) const {
+    if (!mesh_ || !meshData_ || !meshActor_->GetVisibility())
+        return {};
+    const double ratio = devicePixelRatioF();
+    const QSize size = deviceSize();
+    const Vec2 click(position.x() * ratio, position.y() * ratio);
+    renderer()->ResetCameraClippingRange();
+    vtkNew<vtkCellPicker> picker;
+    picker->SetTolerance(0.0);
+    picker->PickFromListOn();
+    picker->AddPickList(meshActor_);
+    // VTK's display y goes up (VtkOpenGLWidget::setEventPosition flips it
+    // the same way).
+    if (!picker->Pick(click.x(), size.height() - 1 - click.y(), 0.0, renderer()))
+        return {};
+    const vtkIdType cell = picker->GetCellId();
+    if (cell < 0 || cell >= static_cast<vtkIdType>(mesh_->faceCount()))
+        return {};
+    const Index f = static_cast<Index>(cell); // meshToPolyData keeps the face order
+    // The face's corners in device pixels, as this view's camera sees them.
+    const Camera camera = viewCamera();
+    const Triangle& t = mesh_->triangle(f);
+    std::array<Vec2, 3> corner;
+    for (int i = 0; i < 3; ++i) {
+        const ProjectedPoint p = camera.project(mesh_->position(t[i]));
+        if (!(p.depth > 0.0) || !p.pixel.allFinite())
+            return Selection::face(f);
+        corner[static_cast<size_t>(i)] = p.pixel;
+    }
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i)
+        shortest = std::min(
+            shortest,
+            (corner[static_cast<size_t>((i + 1) % 3)] - corner[static_cast<size_t>(i)]).norm());
+    // On small faces the radii shrink, so that the face's middle stays the
+    // face.
+    const double vertexRadius = std::min(kPickVertexPixels * ratio, 0.3 * shortest);
+    const double edgeRadius = std::min(kPickEdgePixels * ratio, 0.15 * shortest);
+    int nearestCorner = 0;
+    for (int i = 1; i < 3; ++i)
+        if ((corner[static_cast<size_t>(i)] - click).norm() <
+            (corner[static_cast<size_t>(nearestCorner)] - click).norm())
+            nearestCorner = i;
+    if ((corner[static_cast<size_t>(nearestCorner)] - click).norm() <= vertexRadius)
+        return Selection::vertex(t[nearestCorner]);
+    int nearestEdge = -1;
+    double edgeDistance = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) {
+        const Vec2 a = corner[static_cast<size_t>(i)];
+        const Vec2 ab = corner[static_cast<size_t>((i + 1) % 3)] - a;
+        const double s = ab.squaredNorm() > 0.0
+                             ? std::clamp((click - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
+                             : 0.0;
+        const double d = (a + s * ab - click).norm();
+        if (d < edgeDistance) {
+            edgeDistance = d;
+            nearestEdge = i;
+        }
+    }
+    if (nearestEdge >= 0 && edgeDistance <= edgeRadius)
+        return Selection::edge(mesh_->edge(TriangleMesh::halfedge(f, nearestEdge)));
+    return Selection::face(f);
+}
+
+vtkPolyData* SceneView3D::highlightData() const {
+    return highlightData_;
+}
+
+void SceneView3D::setHighlight(const Selection& selection) {
+    highlight_ = selection;
+    updateHighlight();
+    requestRender();
+}
+
+void SceneView3D::updateHighlight() {
+    highlightData_ = nullptr;
+    if (mesh_ && meshData_ && selectionExists(snapshot_, highlight_)) {
+        auto points = vtkSmartPointer<vtkPoints>::New();
+        auto lines = vtkSmartPointer<vtkCellArray>::New();
+        auto verts = vtkSmartPointer<vtkCellArray>::New();
+        const auto addPoint = [&](const Vec3& p) {
+            return points->InsertNextPoint(p.x(), p.y(), p.z());
+        };
+        switch (highlight_.kind) {
+        case SelectionKind::Face: {
+            const Triangle& t = mesh_->triangle(highlight_.id);
+            const std::array<vtkIdType, 4> ids{addPoint(mesh_->position(t[0])),
+                                               addPoint(mesh_->position(t[1])),
+                                               addPoint(mesh_->position(t[2])), 0};
+            lines->InsertNextCell(4, ids.data());
+            break;
+        }
+        case SelectionKind::Vertex: {
+            const vtkIdType id = addPoint(mesh_->position(highlight_.id));
+            verts->InsertNextCell(1, &id);
+            break;
+        }
+        case SelectionKind::Edge: {
+            const Index h = mesh_->edgeHalfedge(highlight_.id);
+            const std::array<vtkIdType, 2> ids{addPoint(mesh_->position(mesh_->from(h))),
+                                               addPoint(mesh_->position(mesh_->to(h)))};
+            lines->InsertNextCell(2, ids.data());
+            break;
+        }
+        case SelectionKind::Chain: {
+            const ViewChain& chain =
+                snapshot_.viewGraph->chains[static_cast<size_t>(highlight_.id)];
+            std::vector<vtkIdType> ids;
+            for (const Vec3& p : chain.points)
+                ids.push_back(addPoint(p));
+            if (ids.size() >= 2)
+                lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+            else if (ids.size() == 1)
+                verts->InsertNextCell(1, ids.data());
+            break;
+        }
+        case SelectionKind::None:
+            break;
+        }
+        if (points->GetNumberOfPoints() > 0) {
+            highlightData_ = vtkSmartPointer<vtkPolyData>::New();
+            highlightData_->SetPoints(points);
+            highlightData_->SetLines(lines);
+            highlightData_->SetVerts(verts);
+        }
+    }
+    highlightMapper_->SetInputData(highlightData_ ? highlightData_.Get()
+                                                  : vtkSmartPointer<vtkPolyData>::New().Get());
+    highlightActor_->SetVisibility(highlightData_ && meshActor_->GetVisibility());
+}
+
+void SceneView3D::frameFace(Index face) {
+    if (!mesh_ || face < 0 || face >= mesh_->faceCount())
+        return;
+    const Triangle& t = mesh_->triangle(face);
+    const Vec3 centre =
+        (mesh_->position(t[0]) + mesh_->position(t[1]) + mesh_->position(t[2])) / 3.0;
+    double radius = 0.0;
+    for (int i = 0; i < 3; ++i)
+        radius = std::max(radius, (mesh_->position(t[i]) - centre).norm());
+    if (!(radius > 0.0))
+        radius = 1e-3 * mesh_->boundingBox().diagonal();
+    // The face's radius becomes a sixth of the half-height of the view: the
+    // face and a few rings of neighbours around it.
+    constexpr double kFill = 6.0;
+    vtkCamera* camera = renderer()->GetActiveCamera();
+    double direction[3];
+    camera->GetDirectionOfProjection(direction);
+    double distance = camera->GetDistance();
+    if (camera->GetParallelProjection())
+        camera->SetParallelScale(kFill * radius);
+    else
+        distance =
+            kFill * radius / std::tan(0.5 * camera->GetViewAngle() * std::numbers::pi / 180.0);
+    camera->SetFocalPoint(centre.x(), centre.y(), centre.z());
+    camera->SetPosition(centre.x() - distance * direction[0], centre.y() - distance * direction[1],
+                        centre.z() - distance * direction[2]);
+    renderer()->ResetCameraClippingRange();
+    requestRender();
+}
+
+void SceneView3D::mousePressEvent(QMouseEvent* event) {
+    if (event->button() == Qt::LeftButton) {
+        leftPressed_ = true;
+        pressPosition_ = event->position();
+    }
+    VtkOpenGLWidget::mousePressEvent(event);
+}
+
+void SceneView3D::mouseReleaseEvent(QMouseEvent* event) {
+    VtkOpenGLWidget::mouseReleaseEvent(event);
+    if (event->button() != Qt::LeftButton || !leftPressed_)
+        return;
+    leftPressed_ = false;
+    if ((event->position() - pressPosition_).manhattanLength() <= kClickSlopPixels)
+        emit pickRequested(pick(event->position()));
 }
 
 } // namespace contour

@@ -15,6 +15,7 @@
 // those only on hidden chains depth-tested with the hidden chains.
 #include "DivergingColorMap.h"
 #include "SceneColors.h"
+#include "Selection.h"
 #include "ViewGraphStyle.h"
 #include "VtkOpenGLWidget.h"
 #include "camera/Camera.h"
@@ -143,6 +144,26 @@ public:
     // trackball drag does.
     void orbit(double azimuthDegrees, double elevationDegrees);
 
+    // Linked selection (Selection.h). What a click at `position` (widget
+    // coordinates) hits on the mesh (a cell picker on the mesh actor, nearest
+    // surface along the ray): the vertex of the hit face within
+    // kPickVertexPixels of the click (less on small faces), else its edge
+    // within kPickEdgePixels, else the face; nothing off the mesh.
+    Selection pick(const QPointF& position) const;
+    static constexpr double kPickVertexPixels = 6.0; // widget pixels
+    static constexpr double kPickEdgePixels = 4.0;
+    // A press and release further apart than this is a drag (an orbit).
+    static constexpr double kClickSlopPixels = 4.0;
+    // Draws the selected element over everything in sceneColors::kSelection:
+    // a face's outline, a vertex's dot, an edge, or a view-graph chain.
+    void setHighlight(const Selection& selection);
+    const Selection& highlight() const { return highlight_; }
+    // The highlight's VTK data (null when nothing is drawn).
+    vtkPolyData* highlightData() const;
+    // Zooms this view's camera onto the face, keeping its viewing direction
+    // (the analysis camera does not change).
+    void frameFace(Index face);
+
     // True when the frustum is drawn (decided before each render).
     bool isFrustumVisible() const;
     // True when this view's camera shows the analysis camera's view.
@@ -156,9 +177,15 @@ signals:
     // The frustum appeared or disappeared (the view left or joined the
     // analysis camera).
     void viewMatchChanged(bool matches);
+    // setSnapshot() or clearScene() changed the snapshot shown.
+    void snapshotChanged();
+    // A left click without drag: what pick() found there (possibly nothing).
+    void pickRequested(const Selection& selection);
 
 protected:
     void beforeRender() override;
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
 
 private:
     void updateFrustum();
@@ -173,6 +200,8 @@ private:
     void updateViewGraph();
     void recolourViewGraph();
     void updateViewGraphVisibility();
+    // Converts highlight_ for the current snapshot.
+    void updateHighlight();
 
     vtkNew<vtkPolyDataMapper> meshMapper_;
     vtkNew<vtkActor> meshActor_;
@@ -235,6 +264,15 @@ private:
     bool showsScalar_ = false;
     int curveCount_ = 0;
     bool lastMatch_ = true;
+
+    // Linked selection: the highlight (on the overlay renderer) and the
+    // press that may become a click.
+    Selection highlight_;
+    vtkSmartPointer<vtkPolyData> highlightData_;
+    vtkNew<vtkPolyDataMapper> highlightMapper_;
+    vtkNew<vtkActor> highlightActor_;
+    QPointF pressPosition_;
+    bool leftPressed_ = false;
 };
 
 } // namespace contour

@@ -62,7 +62,7 @@ inline SceneColor chainColor(Index chain) {
     return {c.redF(), c.greenF(), c.blueF()};
 }
 
-enum class NodeGlyph { Square, Diamond, Triangle, TriangleDown, Circle, Ring, Cross };
+enum class NodeGlyph { Square, Diamond, TriangleUp, TriangleDown, Circle, Ring, Cross };
 
 struct NodeStyle {
     SceneColor color;
@@ -80,7 +80,7 @@ inline NodeStyle nodeStyle(ViewNodeType type) {
         return {{0.15, 0.75, 0.30}, NodeGlyph::Diamond, "boundary curtain fold"};
     case ViewNodeType::ImageIntersection:
         // Orange, not red: the 3D view's visible contours are red.
-        return {{1.0, 0.55, 0.0}, NodeGlyph::Triangle, "T-junction"};
+        return {{1.0, 0.55, 0.0}, NodeGlyph::TriangleUp, "T-junction"};
     case ViewNodeType::ContourBoundaryJunction:
         return {{0.55, 0.33, 0.10}, NodeGlyph::TriangleDown, "Y junction"};
     case ViewNodeType::Bifurcation:

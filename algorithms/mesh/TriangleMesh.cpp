@@ -33,13 +33,25 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> tr
             throw std::invalid_argument("triangle " + std::to_string(f) + " repeats a vertex");
     }
 
-    // Pair half-edges by sorting undirected keys: O(n log n), no hash map.
+    // Pair half-edges by sorting undirected keys, no hash map: bucketed by
+    // the lower vertex (counting sort), then each small bucket sorted; the
+    // same order as one std::sort of all keys, in O(n) for bounded valence.
     std::vector<DirectedEdge> keys(nh);
-    for (Index h = 0; h < nh; ++h) {
-        const Index a = from(h), b = to(h);
-        keys[h] = {std::min(a, b), std::max(a, b), h};
+    std::vector<Index> bucketStart(static_cast<size_t>(nv) + 1, 0);
+    for (Index h = 0; h < nh; ++h)
+        ++bucketStart[static_cast<size_t>(std::min(from(h), to(h))) + 1];
+    for (size_t v = 0; v < static_cast<size_t>(nv); ++v)
+        bucketStart[v + 1] += bucketStart[v];
+    {
+        std::vector<Index> next(bucketStart.begin(), bucketStart.end() - 1);
+        for (Index h = 0; h < nh; ++h) {
+            const Index a = from(h), b = to(h);
+            keys[static_cast<size_t>(next[static_cast<size_t>(std::min(a, b))]++)] = {
+                std::min(a, b), std::max(a, b), h};
+        }
     }
-    std::sort(keys.begin(), keys.end());
+    for (size_t v = 0; v < static_cast<size_t>(nv); ++v)
+        std::sort(keys.begin() + bucketStart[v], keys.begin() + bucketStart[v + 1]);
     opposite_.assign(nh, kInvalidIndex);
     halfedgeEdge_.assign(nh, kInvalidIndex);
     edgeHalfedge_.reserve(nh / 2 + 1);

@@ -75,6 +75,19 @@ struct Snapshot {
     long long invariantViolations() const;
 };
 
+// The field `name` at `location` as values of type T, one per element
+// (`count`), or null when the snapshot lacks it, stores it with another type
+// or location, or its size does not match the mesh.
+template <typename T>
+const std::vector<T>* fieldValues(const Snapshot& s, const std::string& name,
+                                  FieldLocation location, Index count) {
+    const Field* field = s.field(name);
+    if (!field || field->location != location)
+        return nullptr;
+    const auto* values = std::get_if<std::vector<T>>(&field->values);
+    return values && values->size() == static_cast<std::size_t>(count) ? values : nullptr;
+}
+
 // The snapshot a method starts from: the cage as loaded and its triangulation.
 Snapshot makeInputSnapshot(std::shared_ptr<const PolygonMesh> cage);
 

@@ -23,7 +23,10 @@ struct ImageSegment {
 struct ImageCrossing {
     Index first = kInvalidIndex; // first < second
     Index second = kInvalidIndex;
-    Vec2 point = Vec2::Zero(); // rounded from the exact intersection
+    // At a segment's endpoint: that endpoint. Inside both: the two segments'
+    // crossing computed in double (within a few ulps of the exact point,
+    // which is not evaluated: GMP cost more than the sweep).
+    Vec2 point = Vec2::Zero();
     bool interiorFirst = false;
     bool interiorSecond = false;
 };
@@ -38,10 +41,13 @@ struct ImageIntersectionResult {
 };
 
 // `ignorePair(i, j)`, when given, names pairs whose meeting the caller does
-// not need (segments that share a mesh vertex). A segment whose bounding box
-// overlaps no other box except such pairs' cannot take part in a wanted
-// crossing, so it is left out of the sweep (CGAL's box intersection finds
-// the overlaps first); crossings are reported among the others only.
+// not need (segments that share a mesh vertex). A segment that meets no
+// other segment except such pairs cannot take part in a wanted crossing, so
+// it is left out of the sweep: CGAL's box intersection finds the pairs of
+// overlapping boxes, and an exact test (orientation predicates on the input
+// doubles) keeps the pairs that really meet. Crossings are reported among
+// the swept segments only: all those of pairs not ignored, and only some of
+// the ignored pairs'.
 ImageIntersectionResult
 imageIntersections(std::span<const ImageSegment> segments,
                    const std::function<bool(Index, Index)>& ignorePair = {});

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <map>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 #include <tuple>
 
 namespace contour {
@@ -194,18 +196,54 @@ SurfaceIntersectionCurves surfaceIntersectionCurves(const TriangleMesh& mesh) {
         }
         boxes.emplace_back(box, f);
     }
-    std::vector<std::pair<Index, Index>> candidates;
-    CGAL::box_self_intersection_d(
-        boxes.begin(), boxes.end(),
-        [&](const Box& a, const Box& b) {
-            // Faces sharing a vertex (or an edge) are skipped: on a manifold mesh
-            // they meet there, and that is not an intersection curve. A fold that
-            // makes two such faces cross elsewhere is missed (see the header).
-            if (!shareVertex(mesh.triangle(a.info()), mesh.triangle(b.info())))
-                candidates.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
-        },
-        kBoxCutoff);
-    std::sort(candidates.begin(), candidates.end());
+    // Two slabs on either side of the median face along the box's longest
+    // axis, searched in parallel: a face whose box reaches the median plane
+    // is in both, and two overlapping boxes lie together in one slab (or
+    // both sides of the plane would separate them). Pairs found twice (both
+    // boxes reach the plane) are removed by the sort below, so the result
+    // does not depend on the number of threads.
+    const BoundingBox bounds = mesh.boundingBox();
+    const Vec3 extent = bounds.max - bounds.min;
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (extent[k] > extent[axis])
+            axis = k;
+    std::vector<double> centres(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        centres[i] = 0.5 * (boxes[i].min_coord(axis) + boxes[i].max_coord(axis));
+    double split = 0.0;
+    if (!centres.empty()) {
+        auto middle = centres.begin() + static_cast<std::ptrdiff_t>(centres.size() / 2);
+        std::nth_element(centres.begin(), middle, centres.end());
+        split = *middle;
+    }
+    std::vector<Box> slab[2];
+    for (const Box& box : boxes) {
+        if (box.min_coord(axis) <= split)
+            slab[0].push_back(box);
+        if (box.max_coord(axis) >= split)
+            slab[1].push_back(box);
+    }
+    std::vector<std::pair<Index, Index>> pairs[2];
+    auto search = [&](int side) {
+        CGAL::box_self_intersection_d(
+            slab[side].begin(), slab[side].end(),
+            [&](const Box& a, const Box& b) {
+                // Faces sharing a vertex (or an edge) are skipped: on a manifold
+                // mesh they meet there, and that is not an intersection curve. A
+                // fold that makes two such faces cross elsewhere is missed (see
+                // the header).
+                if (!shareVertex(mesh.triangle(a.info()), mesh.triangle(b.info())))
+                    pairs[side].emplace_back(std::min(a.info(), b.info()),
+                                             std::max(a.info(), b.info()));
+            },
+            kBoxCutoff);
+    };
+    tbb::parallel_invoke([&] { search(0); }, [&] { search(1); });
+    std::vector<std::pair<Index, Index>> candidates = std::move(pairs[0]);
+    candidates.insert(candidates.end(), pairs[1].begin(), pairs[1].end());
+    tbb::parallel_sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     result.candidatePairs = static_cast<long long>(candidates.size());
 
     auto exactTriangle = [&](Index f) {

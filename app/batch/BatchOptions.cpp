@@ -1,6 +1,8 @@
 #include "BatchOptions.h"
 
+#include "BatchRun.h"
 #include "contours/Methods.h"
+#include "export/SessionFile.h"
 
 #include <CLI/CLI.hpp>
 #include <charconv>
@@ -146,13 +148,21 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
 
     app.add_flag("--list-methods", o.listMethods,
                  "List the methods, their phases and parameters, then exit.");
-    app.add_option("--mesh", o.meshPath, "Mesh to read (.obj, .off, .ply). Required.")
-        ->type_name("FILE");
-    app.add_option("--method", methodName,
-                   "Contour method: " + join(methodNames(), ", ") +
-                       " (planned, not implemented yet: " + join(plannedNames(), ", ") + ").")
-        ->type_name("NAME")
-        ->capture_default_str();
+    CLI::Option* meshOption =
+        app.add_option("--mesh", o.meshPath, "Mesh to read (.obj, .off, .ply). Required.")
+            ->type_name("FILE");
+    CLI::Option* sessionOption =
+        app.add_option("--session", o.sessionPath,
+                       "Run what a workbench session file (.cwsession) holds: its mesh, method, "
+                       "parameters, analysis camera and phase reached. Parameter flags, "
+                       "--phase, --width, --height and --views26 override it.")
+            ->type_name("FILE");
+    CLI::Option* methodOption =
+        app.add_option("--method", methodName,
+                       "Contour method: " + join(methodNames(), ", ") +
+                           " (planned, not implemented yet: " + join(plannedNames(), ", ") + ").")
+            ->type_name("NAME")
+            ->capture_default_str();
     app.add_option("--phase", phases,
                    "Stop after N phases (0 = the input only). Default: run every phase.")
         ->type_name("N");
@@ -213,6 +223,12 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
     app.add_option("--write-camera", o.writeCameraPath, "Write the camera used as JSON.")
         ->type_name("FILE")
         ->group(outputGroup);
+    app.add_option("--snapshot-dir", o.snapshotDir,
+                   "Write per view the diagnostic snapshot the workbench exports, without its "
+                   "PNG images: report.json, view-2d.svg, mesh.ply, session.cwsession, into DIR "
+                   "(created if missing; with several views into DIR/view00, ...).")
+        ->type_name("DIR")
+        ->group(outputGroup);
     app.add_option("--ply", o.plyPath,
                    "Write the working mesh of the last snapshot computed (after --phase N when "
                    "given) as ASCII PLY, with every int and double vertex and face field of the "
@@ -252,11 +268,36 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
     }
     if (o.listMethods)
         return result;
+    Session session;
+    if (sessionOption->count() > 0) {
+        for (CLI::Option* option : {meshOption, methodOption, cameraFile, eye, target, up,
+                                    fovOption, ortho, orthoHeightOption})
+            if (option->count() > 0)
+                throw UsageError("--session cannot be combined with " + option->get_name() +
+                                 " (the session names the mesh, method and camera)");
+        try {
+            session = readSession(o.sessionPath);
+        } catch (const std::exception& e) {
+            throw BatchFailure(e.what());
+        }
+        o.meshPath = session.meshPath;
+        methodName = session.method;
+        o.sessionCamera = session.camera;
+    }
     if (o.meshPath.empty())
         throw UsageError("--mesh is required (the mesh file to read)");
 
     o.method = resolveMethod(methodName);
     o.parameters = ParameterSet::defaults(o.method->parameters);
+    if (o.sessionCamera) {
+        try {
+            o.parameters = sessionParameters(session, *o.method, &o.sessionWarnings);
+        } catch (const std::invalid_argument& e) {
+            throw BatchFailure(o.sessionPath + ": " + e.what());
+        }
+        if (app.count("--phase") == 0)
+            o.phases = sessionPhaseTarget(session, *o.method, &o.sessionWarnings);
+    }
     for (const std::string& name : flagOrder) {
         const ParameterFlag& flag = flags.at(name);
         if (flag.option->count() == 0)
@@ -315,10 +356,17 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         if (option->count() > 0 && (value < 1 || value > kMaxViewportSide))
             throw UsageError(option->get_name() + ": " + std::to_string(value) +
                              " pixels is not in [1, " + std::to_string(kMaxViewportSide) + "]");
-    if (widthOption->count() > 0 || cameraFile->count() == 0)
+    // A camera file or session keeps its viewport unless --width/--height say
+    // otherwise (the 26 views of a session take the session's viewport).
+    const bool ownViewport = cameraFile->count() > 0 || o.sessionCamera;
+    if (widthOption->count() > 0 || !ownViewport)
         o.camera.width = width;
-    if (heightOption->count() > 0 || cameraFile->count() == 0)
+    else if (o.sessionCamera && o.views26)
+        o.camera.width = o.sessionCamera->viewport.width;
+    if (heightOption->count() > 0 || !ownViewport)
         o.camera.height = height;
+    else if (o.sessionCamera && o.views26)
+        o.camera.height = o.sessionCamera->viewport.height;
     if (app.count("--phase") > 0) {
         const size_t available = o.method->phases.size();
         if (phases < 0 || static_cast<size_t>(phases) > available)
@@ -328,12 +376,16 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         o.phases = phases;
     }
 
+    // "out/snap/" -> "out/snap": its parent folder must exist.
+    while (o.snapshotDir.size() > 1 && o.snapshotDir.back() == '/')
+        o.snapshotDir.pop_back();
     // Two outputs with one name would overwrite each other.
     const std::vector<std::pair<std::string, std::string>> outputs{
         {"--svg", o.svgPath},
         {"--json", o.jsonPath},
         {"--write-camera", o.writeCameraPath},
-        {"--ply", o.plyPath}};
+        {"--ply", o.plyPath},
+        {"--snapshot-dir", o.snapshotDir}};
     for (size_t i = 0; i < outputs.size(); ++i)
         for (size_t j = i + 1; j < outputs.size(); ++j)
             if (!outputs[i].second.empty() && outputs[i].second == outputs[j].second)

@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace contour::batch {
 
@@ -36,6 +37,16 @@ struct BatchOptions {
     bool views26 = false;
     std::optional<int> phases; // stop after this many phases; all when empty
     std::string svgPath, jsonPath, writeCameraPath, plyPath;
+    // --snapshot-dir: per view, the diagnostic snapshot's report.json,
+    // view-2d.svg, mesh.ply and session.cwsession (DiagnosticSnapshot.h);
+    // with several views one sub-folder per view (view00, ...).
+    std::string snapshotDir;
+    // --session: the session file the mesh, method, parameters, camera and
+    // phase came from (flags may override parameters, --phase, --width,
+    // --height, --views26); its camera, and what reading it noted.
+    std::string sessionPath;
+    std::optional<Camera> sessionCamera;
+    std::vector<std::string> sessionWarnings;
     // Exit with code 3 when any phase of any view violated a post-condition
     // (Release builds count violations instead of failing the phase), or when
     // a view graph records a visibility conflict between a ray test and exact

@@ -1,6 +1,7 @@
 #include "BatchRun.h"
 
 #include "Summary.h"
+#include "export/DiagnosticSnapshot.h"
 #include "export/JsonReport.h"
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
@@ -101,7 +102,8 @@ std::vector<Camera> placeCameras(const BatchOptions& o, const BoundingBox& box,
 
 // Fails before any work when an output's folder does not exist.
 void checkOutputFolders(const BatchOptions& o) {
-    for (const std::string& path : {o.svgPath, o.jsonPath, o.writeCameraPath, o.plyPath}) {
+    for (const std::string& path :
+         {o.svgPath, o.jsonPath, o.writeCameraPath, o.plyPath, o.snapshotDir}) {
         if (path.empty())
             continue;
         std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -146,6 +148,12 @@ bool conflictByDesign(const ViewGraph& graph, const VisibilityConflict& conflict
     }
 }
 
+// A diagnostic snapshot to write once every view has run.
+struct PendingSnapshot {
+    std::string folder;
+    std::vector<SnapshotFile> files;
+};
+
 SvgOptions svgOptions(const std::string& title) {
     SvgOptions options;
     options.title = title;
@@ -171,6 +179,15 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
     std::unique_ptr<Camera> fileCamera;
     if (!o.cameraFile.empty())
         fileCamera = std::make_unique<Camera>(readCameraFile(o));
+    if (o.sessionCamera) {
+        fileCamera = std::make_unique<Camera>(*o.sessionCamera);
+        if (o.camera.width)
+            fileCamera->viewport.width = *o.camera.width;
+        if (o.camera.height)
+            fileCamera->viewport.height = *o.camera.height;
+        for (const std::string& warning : o.sessionWarnings)
+            out << "session: " << warning << "\n";
+    }
 
     const std::shared_ptr<const PolygonMesh> cage = loadMesh(o.meshPath);
     Snapshot input;
@@ -188,6 +205,14 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
 
     JsonReport report("contour-batch", CONTOUR_VERSION, o.meshPath, input, method, o.parameters);
     std::vector<PendingFile> files;
+    std::vector<PendingSnapshot> snapshots;
+    std::string absoluteMesh;
+    {
+        std::error_code error;
+        absoluteMesh = std::filesystem::absolute(o.meshPath, error).lexically_normal().string();
+        if (error)
+            absoluteMesh = o.meshPath;
+    }
     long long violations = 0;
     std::string firstViolation;
     long long conflicts = 0;
@@ -250,6 +275,36 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
             files.push_back({several ? viewOutputPath(o.writeCameraPath, view) : o.writeCameraPath,
                              camera.toJson().dump(2) + "\n",
                              {}});
+        if (!o.snapshotDir.empty()) {
+            DiagnosticSnapshotRun run;
+            run.toolName = "contour-batch";
+            run.toolVersion = CONTOUR_VERSION;
+            run.meshPath = o.meshPath;
+            run.method = &method;
+            run.parameters = o.parameters;
+            run.camera = camera;
+            run.snapshots = runner->snapshots();
+            run.title = title;
+            run.session.meshPath = absoluteMesh;
+            run.session.method = method.name;
+            run.session.parameters = o.parameters;
+            run.session.camera = camera;
+            run.session.phaseReached = runner->completedPhases();
+            run.session.phaseName = runner->current().phaseName;
+            std::vector<std::string> notes;
+            PendingSnapshot snapshot;
+            std::string number = std::to_string(view);
+            if (view < 10)
+                number.insert(0, 1, '0');
+            snapshot.folder =
+                several ? (std::filesystem::path(o.snapshotDir) / ("view" + number)).string()
+                        : o.snapshotDir;
+            snapshot.files = diagnosticSnapshotFiles(run, &notes);
+            if (v == 0)
+                for (const std::string& note : notes)
+                    out << "  --snapshot-dir: " << note << "\n";
+            snapshots.push_back(std::move(snapshot));
+        }
         if (!o.plyPath.empty()) {
             const Snapshot& last = runner->current();
             if (!last.mesh)
@@ -270,6 +325,7 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
         files.push_back({o.jsonPath, report.text(), {}});
 
     std::vector<std::string> written;
+    std::vector<std::filesystem::path> createdFolders;
     try {
         for (const PendingFile& file : files) {
             if (file.write)
@@ -278,10 +334,29 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
                 writeFileAtomically(file.path, file.content);
             written.push_back(file.path);
         }
+        for (const PendingSnapshot& snapshot : snapshots) {
+            // The snapshot folder (and a view's sub-folder) is made here, and
+            // removed again on failure.
+            for (const std::filesystem::path& folder :
+                 {std::filesystem::path(o.snapshotDir), std::filesystem::path(snapshot.folder)}) {
+                std::error_code error;
+                if (std::filesystem::create_directory(folder, error))
+                    createdFolders.push_back(folder);
+                else if (error)
+                    throw std::runtime_error(snapshot.folder + ": cannot create the folder (" +
+                                             error.message() + ")");
+            }
+            for (const std::string& path : writeSnapshotFiles(snapshot.folder, snapshot.files))
+                written.push_back(path);
+        }
     } catch (const std::exception& e) {
         // Leave no partial set of outputs behind either.
         for (const std::string& path : written)
             std::remove(path.c_str());
+        for (auto it = createdFolders.rbegin(); it != createdFolders.rend(); ++it) {
+            std::error_code ignored;
+            std::filesystem::remove(*it, ignored); // only if empty
+        }
         throw BatchFailure(e.what());
     }
     printWritten(out, written);

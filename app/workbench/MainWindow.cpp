@@ -1,13 +1,20 @@
 #include "MainWindow.h"
 
+#include "AboutDialog.h"
 #include "FieldLabels.h"
 #include "ImageView2D.h"
+#include "Inspector.h"
+#include "MethodComparison.h"
 #include "MethodPanel.h"
 #include "PhaseStepper.h"
 #include "SceneColors.h"
 #include "SceneView3D.h"
+#include "SelectionController.h"
+#include "SessionController.h"
+#include "SnapshotExport.h"
 #include "ViewGraphStyle.h"
 #include "contours/Methods.h"
+#include "export/CurveComparison.h"
 #include "mesh/MeshError.h"
 #include "mesh/MeshReader.h"
 #include "pipeline/FieldNames.h"
@@ -175,6 +182,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     setAcceptDrops(true);
     createLayout();
     createActions();
+    createSelection();
     connect(&watcher_, &QFutureWatcher<JobResult>::finished, this, &MainWindow::onJobFinished);
     connect(methodPanel_, &MethodPanel::methodChanged, this, [this] { rebuildRunner(-1); });
     // New parameters: run again up to the phase reached (or being run to).
@@ -192,6 +200,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     // is missing), so that it becomes the choice.
     connect(colorSelector_, &QComboBox::currentIndexChanged, this, &MainWindow::onColorSelected);
     connect(colorSelector_, &QComboBox::activated, this, &MainWindow::onColorSelected);
+    connect(comparison_, &MethodComparison::changed, this, &MainWindow::updateComparison);
     updateColorSelector();
     updateOverlayActions();
     stepper_->setMethod(methodPanel_->method());
@@ -202,6 +211,45 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
 MainWindow::~MainWindow() {
     cancelAndWait();
+}
+
+// ------------------------------------------- linked selection, inspector
+
+void MainWindow::createSelection() {
+    inspector_ = new Inspector;
+    auto* dock = new QDockWidget(tr("Inspector"), this);
+    dock->setObjectName(QStringLiteral("inspectorDock"));
+    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+    dock->setWidget(inspector_);
+    dock->setMinimumWidth(300);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    selection_ = new SelectionController(sceneView_, imageView_, inspector_, this);
+    selection_->setPhaseNames([this] {
+        std::vector<std::string> names;
+        if (const Method* method = methodPanel_->method())
+            for (const Phase& phase : method->phases)
+                names.push_back(phase.name);
+        return names;
+    });
+    connect(selection_, &SelectionController::message, this,
+            [this](const QString& text) { statusBar()->showMessage(text, 6000); });
+    nextInconsistentAction_ = new QAction(tr("&Next inconsistent face"), this);
+    nextInconsistentAction_->setObjectName(QStringLiteral("nextInconsistentFace"));
+    nextInconsistentAction_->setShortcut(Qt::Key_N);
+    nextInconsistentAction_->setToolTip(
+        tr("Select the next contour-inconsistent face of this phase and zoom the 3D view onto "
+           "it; the analysis camera stays (N)"));
+    connect(nextInconsistentAction_, &QAction::triggered, selection_,
+            &SelectionController::selectNextInconsistentFace);
+    QAction* clear = new QAction(tr("C&lear selection"), this);
+    connect(clear, &QAction::triggered, selection_, &SelectionController::clear);
+    QMenu* menu = menuBar()->addMenu(tr("&Selection"));
+    menu->addAction(nextInconsistentAction_);
+    menu->addAction(clear);
+    menu->addAction(dock->toggleViewAction());
+    QToolBar* bar = addToolBar(tr("Selection"));
+    bar->setObjectName(QStringLiteral("selectionToolBar"));
+    bar->addAction(nextInconsistentAction_);
 }
 
 void MainWindow::createLayout() {
@@ -264,9 +312,12 @@ void MainWindow::createActions() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     openAction_ = file->addAction(tr("&Open mesh…"), this, &MainWindow::openFileDialog);
     openAction_->setShortcut(QKeySequence::Open);
-    file->addSeparator();
+    QAction* quitSeparator = file->addSeparator();
     QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
     quit->setShortcut(QKeySequence::Quit);
+    // Sessions, diagnostic snapshot export, recent files (SessionController).
+    sessions_ = new SessionController(this);
+    sessions_->addFileActions(file, quitSeparator);
 
     QMenu* run = menuBar()->addMenu(tr("&Run"));
     stepAction_ = run->addAction(tr("&Step"), this, &MainWindow::stepPhase);
@@ -281,6 +332,9 @@ void MainWindow::createActions() {
     resetAction_ = run->addAction(tr("&Reset"), this, &MainWindow::resetPhases);
     resetAction_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
     resetAction_->setToolTip(tr("Return to the input (Shift+F5)"));
+    cancelAction_ = run->addAction(tr("&Cancel"), this, &MainWindow::cancelPhases);
+    cancelAction_->setShortcut(Qt::Key_Escape);
+    cancelAction_->setToolTip(tr("Stop the running phase; the last finished one stays (Esc)"));
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
     cameraFromViewAction_ = view->addAction(tr("Set analysis &camera from this view"), this,
@@ -300,6 +354,7 @@ void MainWindow::createActions() {
     tools->addAction(backAction_);
     tools->addAction(stepAction_);
     tools->addAction(runAction_);
+    tools->addAction(cancelAction_);
     tools->addSeparator();
     tools->addAction(cameraFromViewAction_);
     tools->addAction(viewToCameraAction_);
@@ -325,8 +380,12 @@ void MainWindow::createActions() {
     colorLegend_->setTextFormat(Qt::RichText);
     colorLegend_->setContentsMargins(8, 0, 8, 0);
     display->addWidget(colorLegend_);
+    createCompareSelector(display);
 
     createOverlayActions(view);
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&About Contour Workbench…"), this, [this] { showAboutDialog(this); });
 }
 
 void MainWindow::createOverlayActions(QMenu* viewMenu) {
@@ -489,7 +548,10 @@ bool MainWindow::openMesh(const QString& path) {
         return false;
     }
     QApplication::restoreOverrideCursor();
-    return setMesh(std::move(mesh), path);
+    if (!setMesh(std::move(mesh), path))
+        return false;
+    sessions_->noteRecentFile(path);
+    return true;
 }
 
 bool MainWindow::setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString& name) {
@@ -543,6 +605,9 @@ bool MainWindow::setMethod(const QString& name) {
 void MainWindow::rebuildRunner(int completed) {
     cancelAndWait();
     runner_.reset();
+    if (restoring_)
+        return; // restoreRun() rebuilds once, at the end
+    comparison_->setPrimary(input_, camera_, methodPanel_->parameters());
     const Method* method = methodPanel_->method();
     stepper_->setMethod(method);
     if (!method || !input_ || !camera_) {
@@ -772,6 +837,67 @@ void MainWindow::showRunnerState() {
     stepper_->setSnapshots(runner_->snapshots());
     // Facing appears with its phase without the selector's list changing.
     updateColorLegend();
+    updateComparison();
+}
+
+void MainWindow::createCompareSelector(QToolBar* toolBar) {
+    comparison_ = new MethodComparison(this);
+    auto* label = new QLabel(tr(" Compare with: "), toolBar);
+    compareSelector_ = new QComboBox(toolBar);
+    compareSelector_->setObjectName(QStringLiteral("compareSelector"));
+    compareSelector_->setToolTip(
+        tr("Runs a second method on the same mesh and analysis camera (with the parameters the "
+           "two methods share) and overlays its curves in the 2D view: its curves thin blue, "
+           "the parts only the window's method draws under red, the parts only the other "
+           "draws under blue (farther than 2 px from any curve of the other)"));
+    compareSelector_->addItem(tr("nothing"), QString());
+    for (const Method& m : contourMethods())
+        compareSelector_->addItem(QString::fromStdString(m.label), QString::fromStdString(m.name));
+    label->setBuddy(compareSelector_);
+    toolBar->addWidget(label);
+    toolBar->addWidget(compareSelector_);
+    connect(compareSelector_, &QComboBox::currentIndexChanged, this, [this](int index) {
+        comparison_->setOtherMethod(compareSelector_->itemData(index).toString());
+        comparison_->setPrimary(input_, camera_, methodPanel_->parameters());
+    });
+}
+
+bool MainWindow::setComparisonMethod(const QString& name) {
+    const int index = compareSelector_->findData(name);
+    if (index < 0)
+        return false;
+    compareSelector_->setCurrentIndex(index);
+    return true;
+}
+
+void MainWindow::updateComparison() {
+    constexpr double kComparisonTolerancePixels = 2.0;
+    const QString other = comparison_->otherMethod();
+    if (other.isEmpty() || !camera_) {
+        imageView_->clearComparison();
+        return;
+    }
+    const Method* otherMethod = findMethod(other.toStdString());
+    const QString otherLabel = otherMethod ? QString::fromStdString(otherMethod->label) : other;
+    if (busy_)
+        return; // shown when the phase job ends (showRunnerState)
+    if (comparison_->isRunning()) {
+        statusBar()->showMessage(tr("Running %1 for the comparison…").arg(otherLabel), 5000);
+        return;
+    }
+    if (!comparison_->error().isEmpty() || !comparison_->result()) {
+        imageView_->clearComparison();
+        statusBar()->showMessage(
+            tr("Comparison with %1 failed: %2").arg(otherLabel, comparison_->error()));
+        return;
+    }
+    const Camera& camera = runner_ ? runner_->camera() : *camera_;
+    const std::vector<ImagePolyline> here = drawnCurves(currentSnapshot(), camera);
+    const std::vector<ImagePolyline> there = drawnCurves(*comparison_->result(), camera);
+    // Short registry names ("consistent"): the 2D view's legend is narrow.
+    const Method* method = methodPanel_->method();
+    imageView_->setComparison(method ? QString::fromStdString(method->name) : tr("this method"),
+                              other, there, compareCurves(here, there, kComparisonTolerancePixels));
 }
 
 bool MainWindow::setColorField(const QString& field) {
@@ -821,6 +947,7 @@ void MainWindow::updateActions() {
     resetAction_->setEnabled(idle && runner_->completedPhases() > 0);
     cameraFromViewAction_->setEnabled(input_.has_value());
     viewToCameraAction_->setEnabled(camera_.has_value());
+    cancelAction_->setEnabled(busy_);
 }
 
 void MainWindow::updateStatus() {
@@ -880,12 +1007,78 @@ void MainWindow::dropEvent(QDropEvent* event) {
     event->acceptProposedAction();
     const QString path = urls.first().toLocalFile();
     // Open after the drop returns, so the drag source is not kept waiting.
-    QTimer::singleShot(0, this, [this, path] { openMesh(path); });
+    QTimer::singleShot(0, this, [this, path] { openFile(path); });
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
     cancelAndWait();
+    sessions_->saveWindowSettings();
     QMainWindow::closeEvent(event);
+}
+
+// ------------------------------------------------ sessions and snapshots
+
+bool MainWindow::saveSession(const QString& path) {
+    return sessions_->save(path);
+}
+
+bool MainWindow::openSession(const QString& path) {
+    return sessions_->open(path);
+}
+
+bool MainWindow::openFile(const QString& path) {
+    const QString suffix = QFileInfo(path).suffix().toLower();
+    if (suffix == QLatin1String("cwsession") || suffix == QLatin1String("json"))
+        return openSession(path);
+    return openMesh(path);
+}
+
+bool MainWindow::exportDiagnosticSnapshot(const QString& folder) {
+    const SnapshotExportResult result = contour::exportDiagnosticSnapshot(*this, folder);
+    if (!result.ok()) {
+        showError(tr("Cannot export the diagnostic snapshot"), result.error);
+        return false;
+    }
+    lastError_.clear();
+    statusBar()->showMessage(
+        tr("Diagnostic snapshot: %1 files written to %2").arg(result.written.size()).arg(folder),
+        8000);
+    return true;
+}
+
+bool MainWindow::restoreRun(std::shared_ptr<const PolygonMesh> mesh, const QString& name,
+                            const QString& method, const ParameterSet& parameters,
+                            const Camera& camera, int phases) {
+    if (!findMethod(method.toStdString())) {
+        showError(tr("Cannot restore the run"),
+                  tr("%1: method \"%2\" is not available").arg(name, method));
+        return false;
+    }
+    if (const std::string problem = camera.validate(); !problem.empty()) {
+        showError(tr("Cannot restore the run"), QString::fromStdString(problem));
+        return false;
+    }
+    // The mesh and the method would each start a run: only the last
+    // rebuildRunner() below does.
+    restoring_ = true;
+    const bool ok = setMesh(std::move(mesh), name) && setMethod(method);
+    restoring_ = false;
+    if (!ok)
+        return false;
+    methodPanel_->setParameters(parameters);
+    camera_ = camera;
+    sceneView_->setViewCamera(camera);
+    rebuildRunner(phases);
+    return true;
+}
+
+void MainWindow::cancelPhases() {
+    if (!busy_)
+        return;
+    cancelRequested_ = true;
+    if (runner_)
+        runner_->requestCancel();
+    statusBar()->showMessage(tr("Cancelling…"));
 }
 
 } // namespace contour

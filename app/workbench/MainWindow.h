@@ -37,8 +37,12 @@ class QSplitter;
 namespace contour {
 
 class ImageView2D;
+class Inspector;
+class MethodComparison;
 class MethodPanel;
 class PhaseStepper;
+class SelectionController;
+class SessionController;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -116,6 +120,39 @@ public:
     // The 3D view's view graph legend (QI colours, node dot colours).
     QLabel* viewGraphLegend() const { return viewGraphLegend_; }
 
+    // Method comparison (issue 6, item 4): a second method run on the same
+    // mesh and camera, its curves and the differences shown in the 2D view.
+    // An empty name turns it off; false for a name that is not a method.
+    bool setComparisonMethod(const QString& name);
+    MethodComparison* methodComparison() const { return comparison_; }
+    QComboBox* compareSelector() const { return compareSelector_; }
+
+    // Sessions, diagnostic snapshots, recent files, settings (issue 6 items
+    // 5-6; the logic is in SessionController and SnapshotExport). Each
+    // returns false and shows why on failure.
+    bool saveSession(const QString& path);
+    bool openSession(const QString& path);
+    bool exportDiagnosticSnapshot(const QString& folder);
+    // A session (.cwsession, .json) or a mesh, by its suffix.
+    bool openFile(const QString& path);
+    // Shows a mesh already read with this method, parameters and analysis
+    // camera, running only to `phases` (no intermediate run starts).
+    bool restoreRun(std::shared_ptr<const PolygonMesh> mesh, const QString& name,
+                    const QString& method, const ParameterSet& parameters, const Camera& camera,
+                    int phases);
+    // Asks the running phase job to stop (Run › Cancel, Esc); returns at once.
+    void cancelPhases();
+    void reportError(const QString& title, const QString& message) { showError(title, message); }
+    SessionController* sessionController() const { return sessions_; }
+    QAction* cancelAction() const { return cancelAction_; }
+
+    // Linked selection and the inspector (issue 6, item 3; the logic is in
+    // SelectionController): the right dock's inspector, the selection shared
+    // by both views, and View › Next inconsistent face (N).
+    Inspector* inspector() const { return inspector_; }
+    SelectionController* selectionController() const { return selection_; }
+    QAction* nextInconsistentAction() const { return nextInconsistentAction_; }
+
     SceneView3D* sceneView() const { return sceneView_; }
     ImageView2D* imageView() const { return imageView_; }
     PhaseStepper* phaseStepper() const { return stepper_; }
@@ -143,6 +180,8 @@ private:
     using Job = std::function<void(Runner&, const std::function<void(int)>& phaseStarted)>;
 
     void createActions();
+    // The inspector dock, the selection and its actions (issue 6, item 3).
+    void createSelection();
     void createLayout();
     void openFileDialog();
     void showError(const QString& title, const QString& message);
@@ -168,7 +207,13 @@ private:
     void updateColorLegend();
     void createViewGraphActions(QMenu* overlayMenu);
     void updateViewGraphLegend();
+    // Method comparison: the difference of the current snapshot's drawing
+    // and the other method's, shown in the 2D view.
+    void createCompareSelector(QToolBar* toolBar);
+    void updateComparison();
 
+    MethodComparison* comparison_ = nullptr;
+    QComboBox* compareSelector_ = nullptr;
     SceneView3D* sceneView_ = nullptr;
     ImageView2D* imageView_ = nullptr;
     MethodPanel* methodPanel_ = nullptr;
@@ -194,6 +239,14 @@ private:
     QAction* resetAction_ = nullptr;
     QAction* cameraFromViewAction_ = nullptr;
     QAction* viewToCameraAction_ = nullptr;
+    // Sessions, snapshots, recent files, settings, About, Cancel (issue 6).
+    SessionController* sessions_ = nullptr;
+    QAction* cancelAction_ = nullptr;
+    bool restoring_ = false; // restoreRun: rebuildRunner waits for the last call
+    // Linked selection and the inspector (issue 6, item 3).
+    Inspector* inspector_ = nullptr;
+    SelectionController* selection_ = nullptr;
+    QAction* nextInconsistentAction_ = nullptr;
 
     std::shared_ptr<const PolygonMesh> cage_;
     std::optional<Snapshot> input_;

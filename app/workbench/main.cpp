@@ -1,6 +1,8 @@
 // contour-workbench: load a mesh, freeze an analysis camera, pick a contour
-// method and step through its phases. Usage: contour-workbench [mesh-file]
+// method and step through its phases. Usage: contour-workbench [mesh-file |
+// session.cwsession]
 #include "MainWindow.h"
+#include "SessionController.h"
 #include "SurfaceFormat.h"
 
 #include <QApplication>
@@ -14,13 +16,16 @@ int main(int argc, char* argv[]) {
     QApplication::setOrganizationName(QStringLiteral("contour"));
 
     contour::MainWindow window;
+    // Recent files and the window's geometry and layout persist (QSettings).
+    window.sessionController()->setUseSettings(true);
+    window.sessionController()->restoreWindowSettings();
     window.show();
     const QStringList arguments = QApplication::arguments();
     if (arguments.size() > 1) {
         const QString path = arguments.at(1);
-        // Once the window is laid out, so the analysis camera gets the 3D
-        // view's size as its viewport.
-        QTimer::singleShot(0, &window, [&window, path] { window.openMesh(path); });
+        // A mesh or a saved session (by suffix). Once the window is laid out, so the analysis
+        // camera gets the 3D view's size as its viewport.
+        QTimer::singleShot(0, &window, [&window, path] { window.openFile(path); });
     }
     return QApplication::exec();
 }

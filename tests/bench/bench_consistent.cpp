@@ -6,7 +6,7 @@
 // nothing.
 //
 //   bench_consistent [--meshes-dir DIR] [--mesh NAME]... [--views N]
-//                    [--out stats.csv] [--threads N]
+//                    [--out stats.csv] [--threads N] [--counters counters.csv]
 //
 // Columns (means are over the views whose run completed, unless said):
 //   Input                 mesh name (file name without extension)
@@ -40,6 +40,10 @@
 //                         else a unique "NAME_..." or prefix match), empty
 //                         when none
 //   ConTesse runtime      its "Runtime" (seconds per view)
+// --counters writes, per view and phase, every counter but the times, the
+// post-condition violations and a digest of the published mesh (positions'
+// bits and faces): two builds that must give the same results (a speed-up)
+// are compared with diff.
 // Case 1-5 and Trial count of the published file are ConTesse's failure
 // categories and retries: they have no counterpart here.
 #include "camera/Camera.h"
@@ -51,6 +55,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -215,8 +220,45 @@ struct ViewResult {
     long long violations = 0;
 };
 
+// FNV-1a over the mesh's positions (bits) and faces: equal digests mean the
+// same mesh, to the bit.
+std::uint64_t meshDigest(const TriangleMesh& mesh) {
+    std::uint64_t h = 1469598103934665603ull;
+    const auto mix = [&h](const void* data, size_t bytes) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < bytes; ++i)
+            h = (h ^ p[i]) * 1099511628211ull;
+    };
+    for (Index v = 0; v < mesh.vertexCount(); ++v)
+        mix(mesh.position(v).data(), 3 * sizeof(double));
+    for (Index f = 0; f < mesh.faceCount(); ++f)
+        mix(mesh.triangle(f).data(), 3 * sizeof(Index));
+    return h;
+}
+
+// Where --counters writes (null: not asked), and the mesh being run.
+std::ofstream* gCounters = nullptr;
+std::string gMeshName;
+
+void writeCounters(int view, const Snapshot& s) {
+    std::ostream& out = *gCounters;
+    const std::string prefix = gMeshName + "," + std::to_string(view) + "," + s.phaseName + ",";
+    for (const Counter& c : s.counters) {
+        // Times differ from run to run.
+        if (c.name.find("second") != std::string::npos || c.name.find("time") != std::string::npos)
+            continue;
+        char value[64];
+        std::snprintf(value, sizeof value, "%.17g", c.value);
+        out << prefix << csvEscape(c.name) << "," << value << "\n";
+    }
+    for (const InvariantCheck& c : s.invariants)
+        out << prefix << csvEscape("violations: " + c.name) << "," << c.violations << "\n";
+    if (s.mesh)
+        out << prefix << "mesh digest," << meshDigest(*s.mesh) << "\n";
+}
+
 ViewResult runView(const Method& method, const Snapshot& input, const Camera& camera,
-                   const ParameterSet& parameters) {
+                   const ParameterSet& parameters, int view) {
     ViewResult r;
     const auto start = Clock::now();
     Runner runner(method, input, camera, parameters);
@@ -231,6 +273,8 @@ ViewResult runView(const Method& method, const Snapshot& input, const Camera& ca
     r.completedPhases = runner.completedPhases();
     for (int p = 1; p <= runner.completedPhases(); ++p) {
         const Snapshot& s = runner.snapshot(p);
+        if (gCounters)
+            writeCounters(view, s);
         r.phaseSeconds.push_back(s.phaseSeconds);
         r.phaseInconsistent.push_back(s.counter("inconsistent faces"));
         r.violations += s.invariantViolations();
@@ -348,7 +392,8 @@ MeshSummary runMesh(const Method& method, const ParameterSet& parameters, const 
                 cage->vertexCount(), cage->faceCount(), m.views);
     std::fflush(stdout);
     for (int v = 0; v < m.views; ++v) {
-        const ViewResult r = runView(method, input, cameras[static_cast<size_t>(v)], parameters);
+        gMeshName = name;
+        const ViewResult r = runView(method, input, cameras[static_cast<size_t>(v)], parameters, v);
         m.violations += r.violations;
         for (size_t p = 0; p < r.phaseSeconds.size(); ++p) {
             m.phaseSeconds[p].add(r.phaseSeconds[p]);
@@ -427,7 +472,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> meshes;
     int views = 26;
     int threads = 0;
-    std::string outPath;
+    std::string outPath, countersPath;
     app.add_option("--meshes-dir", meshesDir, "Folder of the meshes")->capture_default_str();
     app.add_option("--mesh", meshes,
                    "Mesh name (file name without extension), repeat to choose several; default: "
@@ -440,6 +485,9 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "TBB worker threads (0: TBB's default)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
+    app.add_option("--counters", countersPath,
+                   "Write every phase's counters (times excepted), post-condition violations "
+                   "and mesh digest per view to this CSV file (for diffing two builds)");
     app.add_option("--published", publishedPath, "ConTesse's published statistics (CSV)")
         ->capture_default_str();
     CLI11_PARSE(app, argc, argv);
@@ -462,6 +510,14 @@ int main(int argc, char** argv) {
                         "columns stay empty\n",
                         publishedPath.c_str());
 
+        std::ofstream counters;
+        if (!countersPath.empty()) {
+            counters.open(countersPath);
+            if (!counters)
+                throw std::runtime_error("cannot write " + countersPath);
+            counters << "mesh,view,phase,counter,value\n";
+            gCounters = &counters;
+        }
         std::ofstream csv;
         if (!outPath.empty()) {
             csv.open(outPath);

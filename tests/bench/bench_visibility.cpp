@@ -2,8 +2,10 @@
 // figures and asserts nothing.
 //
 //   bench_visibility [--meshes-dir DIR] [--mesh NAME] [--views N]
-//                    [--mesh-surface S] [--mesh-level L]... [--depth-views N]
-//                    [--no-depth] [--out figures.csv] [--threads N]
+//                    [--mesh-surface S] [--mesh-level L]... [--no-mesh]
+//                    [--repeat N] [--save-inputs DIR | --load-inputs DIR]
+//                    [--depth-views N] [--no-depth] [--out figures.csv]
+//                    [--threads N]
 //
 // Part 1, timing: the consistent method and the mesh method run to the end
 // on one model of ../shared/meshes (default controlmesh: its consistent
@@ -11,7 +13,18 @@
 // the meshes there) from the first N views of the 26-view protocol; per view
 // the "visibility" phase's Snapshot::phaseSeconds (its own work, without the
 // post-condition checks) and its graph: ray tests, chains, T-junctions,
-// curtain folds, conflicts. The mesh method runs on the same model's limit
+// curtain folds, conflicts; then its parts (the phase's "... seconds"
+// counters: surface intersections, view graph and of it the CGAL sweep, Embree
+// scene, propagation, check rays, Bénard §8.4) and a fingerprint of the graph
+// (a hash of every chain's curve, ends, QI and rule and every node's type and
+// chains) to show that an optimisation leaves the graph unchanged. --repeat N
+// runs the visibility phase N times on the same input and keeps the fastest
+// (the machine is shared: the minimum is the least disturbed run).
+// --save-inputs DIR writes each view's consistent-method snapshot before the
+// visibility phase (mesh, fields, curves) to DIR/view<N>.bin; --load-inputs DIR
+// times the visibility phase on those instead of running the method, so a
+// change to the visibility code is measured on the same input even while the
+// consistent method's phases change. The mesh method runs on the same model's limit
 // surface, tessellated at each of --mesh-level (default 1 and 2: about 47k
 // and 187k faces on controlmesh, bracketing the consistent mesh; the
 // consistent method starts from the level-1 triangulation); --mesh-surface
@@ -36,6 +49,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -99,34 +113,212 @@ struct Mean {
     double mean() const { return n ? sum / n : 0.0; }
 };
 
+// The visibility phase's parts: its "... seconds" counters.
+struct Part {
+    const char* counter;
+    const char* label;
+};
+constexpr Part kParts[] = {
+    {"surface intersections seconds", "surface int"},
+    {"view graph seconds", "graph"},
+    {"sweep seconds", "of it sweep"},
+    {"ray scene seconds", "Embree scene"},
+    {"propagation seconds", "propagation"},
+    {"check rays seconds", "check rays"},
+    {"consistent visibility seconds", "8.4"},
+};
+constexpr size_t kPartCount = sizeof kParts / sizeof kParts[0];
+
 struct TimingRow {
     std::string mesh, method, setup;
     Mean faces, seconds, rayTests, chains, tJunctions, curtainFolds, conflicts, visibleChains;
+    Mean parts[kPartCount];
 };
 
-struct AgreementRow {
-    std::string mesh, method;
-    int views = 0;
-    DepthAgreement total;
-    double worstVisible = 1.0;
-    int worstView = -1;
-    double checkSeconds = 0.0;
+// FNV-1a over the graph's combinatorics (fingerprint) and its node pixels
+// rounded to 1e-6 px (geometry): equal fingerprints before and after a change
+// mean the same chains, ends, QI, rules, node types and node chains.
+struct Fnv {
+    std::uint64_t h = 1469598103934665603ull;
+    void add(long long v) {
+        for (int i = 0; i < 8; ++i) {
+            h ^= static_cast<std::uint64_t>(v >> (8 * i)) & 0xff;
+            h *= 1099511628211ull;
+        }
+    }
 };
 
-double excludedShare(const DepthLengths& l) {
-    const double sampled = l.compared() + l.undecided + l.excludedNearNode + l.excludedOutside;
-    return sampled > 0.0 ? (l.excludedNearNode + l.excludedOutside) / sampled : 0.0;
+std::pair<std::uint64_t, std::uint64_t> fingerprint(const ViewGraph& g) {
+    Fnv graph, geometry;
+    for (const ViewChain& c : g.chains) {
+        for (long long v :
+             {static_cast<long long>(c.type), static_cast<long long>(c.curve),
+              static_cast<long long>(c.closed), static_cast<long long>(c.startNode),
+              static_cast<long long>(c.endNode), static_cast<long long>(c.qi),
+              static_cast<long long>(c.decidedBy), static_cast<long long>(c.ambiguous),
+              static_cast<long long>(c.conflict), static_cast<long long>(c.points.size())})
+            graph.add(v);
+        for (Index e : c.segmentElement)
+            graph.add(e);
+    }
+    for (const ViewNode& n : g.nodes) {
+        graph.add(static_cast<long long>(n.type));
+        graph.add(n.qiStep);
+        graph.add(n.meshVertex);
+        for (Index c : n.chains)
+            graph.add(c);
+        for (int k = 0; k < 2; ++k)
+            geometry.add(std::llround(n.image[k] * 1e6));
+    }
+    graph.add(static_cast<long long>(g.conflicts.size()));
+    return {graph.h, geometry.h};
 }
+
+// The visibility phase's input, saved and loaded by this bench only (raw
+// binary, this machine's layout): the mesh, every field and the curves.
+template <class T> void put(std::ostream& out, const T& value) {
+    out.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+template <class T> void get(std::istream& in, T& value) {
+    in.read(reinterpret_cast<char*>(&value), sizeof value);
+}
+template <class T> void putVector(std::ostream& out, const T* data, size_t size) {
+    put<std::uint64_t>(out, size);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(sizeof(T) * size));
+}
+template <class T> std::vector<T> getVector(std::istream& in) {
+    std::uint64_t size = 0;
+    get(in, size);
+    if (!in || size > (1ull << 32))
+        throw std::runtime_error("corrupt input file");
+    std::vector<T> v(size);
+    in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(sizeof(T) * size));
+    return v;
+}
+constexpr std::uint32_t kInputMagic = 0x43575631; // "CWV1"
+
+void saveInput(const std::filesystem::path& path, const Snapshot& s) {
+    std::ofstream out(path, std::ios::binary);
+    put(out, kInputMagic);
+    putVector(out, s.mesh->positions().data(), s.mesh->positions().size());
+    putVector(out, s.mesh->triangles().data(), s.mesh->triangles().size());
+    put<std::uint64_t>(out, s.fields.size());
+    for (const auto& [name, field] : s.fields) {
+        putVector(out, name.data(), name.size());
+        put(out, static_cast<int>(field->location));
+        put(out, static_cast<int>(field->values.index()));
+        std::visit([&](const auto& v) { putVector(out, v.data(), v.size()); }, field->values);
+    }
+    const std::vector<Polyline> none;
+    const std::vector<Polyline>& curves = s.curves ? *s.curves : none;
+    put<std::uint64_t>(out, curves.size());
+    for (const Polyline& line : curves) {
+        put(out, static_cast<int>(line.type));
+        put(out, static_cast<int>(line.closed));
+        put(out, static_cast<int>(line.source));
+        putVector(out, line.points.data(), line.points.size());
+        putVector(out, line.segmentElement.data(), line.segmentElement.size());
+    }
+    if (!out)
+        throw std::runtime_error("cannot write " + path.string());
+}
+
+Snapshot loadInput(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::uint32_t magic = 0;
+    get(in, magic);
+    if (!in || magic != kInputMagic)
+        throw std::runtime_error("not a bench_visibility input: " + path.string());
+    Snapshot s;
+    s.phaseName = "loaded";
+    auto positions = getVector<Vec3>(in);
+    auto triangles = getVector<Triangle>(in);
+    s.mesh = std::make_shared<const TriangleMesh>(std::move(positions), std::move(triangles));
+    std::uint64_t fieldCount = 0;
+    get(in, fieldCount);
+    for (std::uint64_t i = 0; i < fieldCount; ++i) {
+        const std::vector<char> name = getVector<char>(in);
+        int location = 0, kind = 0;
+        get(in, location);
+        get(in, kind);
+        Field field;
+        field.location = static_cast<FieldLocation>(location);
+        if (kind == 0)
+            field.values = getVector<double>(in);
+        else if (kind == 1)
+            field.values = getVector<int>(in);
+        else
+            field.values = getVector<Vec3>(in);
+        s.setField(std::string(name.begin(), name.end()), std::move(field));
+    }
+    std::uint64_t curveCount = 0;
+    get(in, curveCount);
+    auto curves = std::make_shared<std::vector<Polyline>>(curveCount);
+    for (Polyline& line : *curves) {
+        int type = 0, closed = 0, source = 0;
+        get(in, type);
+        get(in, closed);
+        get(in, source);
+        line.type = static_cast<CurveType>(type);
+        line.closed = closed != 0;
+        line.source = static_cast<SegmentSource>(source);
+        line.points = getVector<CurvePoint>(in);
+        line.segmentElement = getVector<Index>(in);
+    }
+    s.curves = std::move(curves);
+    if (!in)
+        throw std::runtime_error("truncated input file " + path.string());
+    return s;
+}
+
+struct TimingOptions {
+    int views = 8;
+    int repeat = 1;
+    std::string saveDir, loadDir; // consistent method only
+};
 
 TimingRow timeMethod(const Method& method, const std::string& setup,
                      const std::vector<std::pair<std::string, ParameterValue>>& overrides,
                      const std::string& meshName, const std::shared_ptr<const PolygonMesh>& cage,
-                     int views) {
-    TimingRow row{meshName, method.name, setup, {}, {}, {}, {}, {}, {}, {}, {}};
+                     const TimingOptions& options) {
+    TimingRow row{meshName, method.name, setup, {}, {}, {}, {}, {}, {}, {}, {}, {}};
     const std::vector<Camera> cameras = Camera::views26(cage->boundingBox(), Viewport{800, 600});
-    for (int v = 0; v < views; ++v) {
-        const std::vector<Snapshot> run = runPhases(method, cage, cameras[v], overrides);
-        const Snapshot& s = phase(run, "visibility");
+    // The visibility phase alone, to repeat it (or run it on a loaded input).
+    Method visibilityOnly = method;
+    std::erase_if(visibilityOnly.phases, [](const Phase& p) { return p.name != "visibility"; });
+    ParameterSet parameters = ParameterSet::defaults(method.parameters);
+    for (const auto& [name, value] : overrides)
+        parameters.set(name, value);
+    for (int v = 0; v < options.views; ++v) {
+        const std::filesystem::path file =
+            std::filesystem::path(options.loadDir.empty() ? options.saveDir : options.loadDir) /
+            ("view" + std::to_string(v) + ".bin");
+        Snapshot input;
+        std::optional<Snapshot> best;
+        int runs = 0;
+        if (!options.loadDir.empty()) {
+            input = loadInput(file);
+        } else {
+            const std::vector<Snapshot> run = runPhases(method, cage, cameras[v], overrides);
+            for (size_t i = 1; i < run.size(); ++i)
+                if (run[i].phaseName == "visibility")
+                    input = run[i - 1];
+            if (!options.saveDir.empty())
+                saveInput(file, input);
+            best = phase(run, "visibility");
+            runs = 1;
+        }
+        for (; runs < options.repeat; ++runs) {
+            // A fresh copy of the mesh: the phase caches surface intersections
+            // per mesh object, and each run must compute them.
+            Snapshot fresh = input;
+            fresh.mesh = std::make_shared<const TriangleMesh>(*input.mesh);
+            Runner runner(visibilityOnly, std::move(fresh), cameras[v], parameters);
+            runner.runToEnd();
+            if (!best || runner.current().phaseSeconds < best->phaseSeconds)
+                best = runner.current();
+        }
+        const Snapshot& s = *best;
         if (!s.viewGraph)
             throw std::runtime_error(method.name + ": the visibility phase set no view graph");
         const ViewGraph& g = *s.viewGraph;
@@ -145,13 +337,43 @@ TimingRow timeMethod(const Method& method, const std::string& setup,
         row.curtainFolds.add(folds);
         row.conflicts.add(static_cast<double>(g.conflicts.size()));
         row.visibleChains.add(visible);
+        for (size_t k = 0; k < kPartCount; ++k)
+            row.parts[k].add(s.counter(kParts[k].counter, 0.0));
         std::printf("  %-10s view %2d: %7d faces, visibility %7.1f ms, %7lld ray tests, %5zu "
                     "chains, %4d T-junctions, %4d curtain folds, %3zu conflicts\n",
                     method.name.c_str(), v, s.mesh->faceCount(), 1000.0 * s.phaseSeconds,
                     g.rayTests, g.chains.size(), tJunctions, folds, g.conflicts.size());
+        std::printf("      parts (ms):");
+        for (size_t k = 0; k < kPartCount; ++k)
+            std::printf(" %s %.1f%s", kParts[k].label, 1000.0 * s.counter(kParts[k].counter, 0.0),
+                        k + 1 < kPartCount ? "," : "\n");
+        const auto [graphPrint, geometryPrint] = fingerprint(g);
+        std::printf("      %.0f image segments, %.0f swept, %.0f crossings (%.0f logical), "
+                    "%.0f surface-intersection curves, %.0f cached; fingerprint %016llx, "
+                    "geometry %016llx (best of %d)\n",
+                    s.counter("image segments", 0.0), s.counter("image segments swept", 0.0),
+                    s.counter("image crossings", 0.0), s.counter("logical crossings ignored", 0.0),
+                    s.counter("surface-intersection curves", 0.0),
+                    s.counter("surface intersections cached", 0.0),
+                    static_cast<unsigned long long>(graphPrint),
+                    static_cast<unsigned long long>(geometryPrint), runs);
         std::fflush(stdout);
     }
     return row;
+}
+
+struct AgreementRow {
+    std::string mesh, method;
+    int views = 0;
+    DepthAgreement total;
+    double worstVisible = 1.0;
+    int worstView = -1;
+    double checkSeconds = 0.0;
+};
+
+double excludedShare(const DepthLengths& l) {
+    const double sampled = l.compared() + l.undecided + l.excludedNearNode + l.excludedOutside;
+    return sampled > 0.0 ? (l.excludedNearNode + l.excludedOutside) / sampled : 0.0;
 }
 
 AgreementRow agreement(const Method& method, const std::string& meshName,
@@ -206,6 +428,9 @@ int main(int argc, char** argv) {
     int views = 26;
     int depthViews = 26;
     bool noDepth = false;
+    bool noMesh = false;
+    int repeat = 1;
+    std::string saveDir, loadDir;
     int threads = 0;
     std::string outPath;
     app.add_option("--meshes-dir", meshesDir, "Folder of the meshes")->capture_default_str();
@@ -227,6 +452,19 @@ int main(int argc, char** argv) {
                    "buffer (the first N)")
         ->check(CLI::Range(1, 26))
         ->capture_default_str();
+    app.add_flag("--no-mesh", noMesh, "Part 1: time the consistent method only");
+    app.add_option("--repeat", repeat,
+                   "Part 1: run the visibility phase this many times per view on the same "
+                   "input and keep the fastest run")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    auto* save = app.add_option("--save-inputs", saveDir,
+                                "Part 1: write each view's consistent snapshot before the "
+                                "visibility phase to DIR/view<N>.bin");
+    app.add_option("--load-inputs", loadDir,
+                   "Part 1: time the consistent method's visibility phase on the inputs saved "
+                   "in DIR instead of running the method")
+        ->excludes(save);
     app.add_flag("--no-depth", noDepth, "Skip part 2 (the depth-buffer agreement)");
     app.add_option("--out", outPath, "Write every figure to this CSV file");
     app.add_option("--threads", threads, "TBB worker threads (0: TBB's default)")
@@ -268,14 +506,25 @@ int main(int argc, char** argv) {
             const auto cage = std::make_shared<const PolygonMesh>(readMesh(file->string()));
             std::printf("\n=== part 1: %s, %d cage faces, %d views ===\n", meshName.c_str(),
                         static_cast<int>(cage->faceCount()), views);
-            timing.push_back(timeMethod(*consistent, "defaults", {}, meshName, cage, views));
-            for (int level : meshLevels) {
+            TimingOptions options;
+            options.views = views;
+            options.repeat = repeat;
+            options.saveDir = saveDir;
+            options.loadDir = loadDir;
+            if (!saveDir.empty())
+                std::filesystem::create_directories(saveDir);
+            timing.push_back(timeMethod(*consistent, loadDir.empty() ? "defaults" : "loaded inputs",
+                                        {}, meshName, cage, options));
+            TimingOptions meshOptions;
+            meshOptions.views = views;
+            meshOptions.repeat = repeat;
+            for (int level : noMesh ? std::vector<int>{} : meshLevels) {
                 const std::string setup =
                     "surface " + meshSurface + " level " + std::to_string(level);
                 timing.push_back(timeMethod(*mesh, setup,
                                             {{"surface", ParameterValue(meshSurface)},
                                              {"tessellation-level", ParameterValue(level)}},
-                                            meshName, cage, views));
+                                            meshName, cage, meshOptions));
             }
         } else {
             std::printf("\nskipping part 1: no %s/%s.{obj,off,ply}\n", meshesDir.c_str(),
@@ -315,6 +564,21 @@ int main(int argc, char** argv) {
                                "",
                                "",
                                ""});
+        }
+
+        if (!timing.empty()) {
+            std::printf("\nparts of the visibility phase, ms per view (mean over the views):\n"
+                        "%-12s %-11s %-27s",
+                        "mesh", "method", "setup");
+            for (const Part& part : kParts)
+                std::printf(" %12s", part.label);
+            std::printf("\n");
+            for (const TimingRow& r : timing) {
+                std::printf("%-12s %-11s %-27s", r.mesh.c_str(), r.method.c_str(), r.setup.c_str());
+                for (const Mean& m : r.parts)
+                    std::printf(" %12.1f", 1000.0 * m.mean());
+                std::printf("\n");
+            }
         }
 
         // Part 2.

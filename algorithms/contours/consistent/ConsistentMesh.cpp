@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
 
@@ -34,6 +36,18 @@ MeshVertex ConsistentMesh::evaluate(const Preimage& p) const {
     return v;
 }
 
+MeshVertex ConsistentMesh::evaluateWithoutCurvature(const Preimage& p) const {
+    const SurfacePoint sp = surface_->evaluate(p);
+    MeshVertex v;
+    v.preimage = p;
+    v.position = sp.position;
+    v.normal = sp.normal();
+    v.g = orientation(sp, camera_);
+    v.radialCurvature = std::numeric_limits<double>::quiet_NaN();
+    v.label = labelFromG(v.g);
+    return v;
+}
+
 Index ConsistentMesh::addVertex(const MeshVertex& v) {
     preimageTable_.reset();
     vertices_.push_back(v);
@@ -55,6 +69,8 @@ void ConsistentMesh::assign(std::vector<MeshVertex> vertices, std::vector<Triang
     vertices_ = std::move(vertices);
     faces_ = std::move(faces);
     facePhase_ = std::move(facePhase);
+    orientationCache_.assign(faces_.size(), kOrientationUnknown);
+    domainFaceCache_.assign(faces_.size(), kDomainFaceUnknown);
     std::vector<Index> valence(vertices_.size(), 0);
     for (const Triangle& t : faces_)
         for (Index w : t)
@@ -83,6 +99,7 @@ Index ConsistentMesh::addFace(const Triangle& t, int phase) {
 }
 
 void ConsistentMesh::attachFace(Index f) {
+    forgetFace(f);
     const Triangle& t = faces_[f];
     for (int i = 0; i < 3; ++i) {
         if (!halfedgeFace_.insert(key(t[i], t[(i + 1) % 3]), f))
@@ -97,6 +114,37 @@ void ConsistentMesh::detachFace(Index f) {
         halfedgeFace_.erase(key(t[i], t[(i + 1) % 3]), f);
         std::erase(vertexFaces_[t[i]], f);
     }
+}
+
+void ConsistentMesh::forgetFace(Index f) {
+    const auto i = static_cast<size_t>(f);
+    if (i < orientationCache_.size())
+        orientationCache_[i] = kOrientationUnknown;
+    if (i < domainFaceCache_.size())
+        domainFaceCache_[i] = kDomainFaceUnknown;
+}
+
+void ConsistentMesh::forgetFacesOf(Index v) {
+    for (Index f : vertexFaces_[v])
+        forgetFace(f);
+}
+
+void ConsistentMesh::sizeFaceCaches() const {
+    orientationCache_.resize(faces_.size(), kOrientationUnknown);
+    domainFaceCache_.resize(faces_.size(), kDomainFaceUnknown);
+}
+
+ConsistentMesh::FaceCaches ConsistentMesh::faceCaches() const {
+    sizeFaceCaches();
+    return {tolerance_, orientationCache_, domainFaceCache_};
+}
+
+void ConsistentMesh::adoptFaceCaches(const FaceCaches& caches) {
+    if (caches.chartTolerance != tolerance_ || caches.orientation.size() != faces_.size() ||
+        caches.domainFace.size() != faces_.size())
+        return;
+    orientationCache_ = caches.orientation;
+    domainFaceCache_ = caches.domainFace;
 }
 
 Index ConsistentMesh::faceOfHalfedge(Index a, Index b) const {
@@ -342,49 +390,82 @@ std::optional<int> ConsistentMesh::parameterOrientation(const std::array<Preimag
     return worst;
 }
 
+// The vertex table pays when many faces are unknown (after the
+// initialization); a few edited faces find their corners' preimages
+// directly (the same preimages, so the same results).
+std::shared_ptr<const ConsistentMesh::VertexPreimages>
+ConsistentMesh::tableFor(size_t unknownFaces) const {
+    std::shared_ptr<const VertexPreimages> table = currentVertexPreimages();
+    if (!table && 4 * unknownFaces > faces_.size())
+        table = vertexPreimages();
+    return table;
+}
+
 std::vector<std::optional<int>> ConsistentMesh::parameterOrientations() const {
-    const VertexPreimages& table = *vertexPreimages();
-    std::vector<std::optional<int>> out(faces_.size());
-    tbb::parallel_for(size_t(0), faces_.size(), [&](size_t f) {
-        const Triangle& t = faces_[f];
-        const std::array<PreimageSpan, 3> r{table.of(t[0]), table.of(t[1]), table.of(t[2])};
-        bool any = false;
-        int worst = 1;
-        forEachChart(r, [&](const std::array<Vec2, 3>& c) {
-            any = true;
-            worst = std::min(worst, orientation2d(c[0], c[1], c[2]));
-        });
-        if (any)
-            out[f] = worst;
+    sizeFaceCaches();
+    const size_t nf = faces_.size();
+    const auto unknown = static_cast<size_t>(
+        std::count(orientationCache_.begin(), orientationCache_.end(), kOrientationUnknown));
+    const std::shared_ptr<const VertexPreimages> table = tableFor(unknown);
+    std::vector<std::optional<int>> out(nf);
+    tbb::parallel_for(size_t(0), nf, [&](size_t f) {
+        std::int8_t& cached = orientationCache_[f];
+        if (cached == kOrientationUnknown) {
+            const Triangle& t = faces_[f];
+            std::optional<int> o;
+            if (table) {
+                const std::array<PreimageSpan, 3> r{table->of(t[0]), table->of(t[1]),
+                                                    table->of(t[2])};
+                bool any = false;
+                int worst = 1;
+                forEachChart(r, [&](const std::array<Vec2, 3>& c) {
+                    any = true;
+                    worst = std::min(worst, orientation2d(c[0], c[1], c[2]));
+                });
+                if (any)
+                    o = worst;
+            } else {
+                o = parameterOrientation(static_cast<Index>(f));
+            }
+            cached = o ? static_cast<std::int8_t>(*o) : kOrientationNoChart;
+        }
+        if (cached != kOrientationNoChart)
+            out[f] = cached;
     });
     return out;
 }
 
 std::vector<Index> ConsistentMesh::centroidDomainFaces() const {
-    const VertexPreimages& table = *vertexPreimages();
-    std::vector<Index> out(faces_.size());
+    sizeFaceCaches();
+    const auto unknown = static_cast<size_t>(
+        std::count(domainFaceCache_.begin(), domainFaceCache_.end(), kDomainFaceUnknown));
+    const std::shared_ptr<const VertexPreimages> table = tableFor(unknown);
     tbb::parallel_for(size_t(0), faces_.size(), [&](size_t f) {
+        if (domainFaceCache_[f] != kDomainFaceUnknown)
+            return;
         const Triangle& t = faces_[f];
         const Preimage &p0 = vertices_[t[0]].preimage, &p1 = vertices_[t[1]].preimage,
                        &p2 = vertices_[t[2]].preimage;
-        // interpolate(p0, p1, 0.5), then a third of the way to p2.
+        // interpolate(p0, p1, 0.5), then a third of the way to p2 (the
+        // table holds equivalents() of each corner: the same as
+        // interpolate() without it).
         const std::optional<Preimage> mid =
-            p0.face == p1.face ? interpolate(p0, p1, 0.5)
-                               : interpolateIn(table.of(t[0]), table.of(t[1]), 0.5);
+            p0.face == p1.face || !table ? interpolate(p0, p1, 0.5)
+                                         : interpolateIn(table->of(t[0]), table->of(t[1]), 0.5);
         if (!mid) {
-            out[f] = kInvalidIndex;
+            domainFaceCache_[f] = kInvalidIndex;
             return;
         }
         std::optional<Preimage> centroid;
-        if (mid->face == p2.face) {
+        if (mid->face == p2.face || !table) {
             centroid = interpolate(*mid, p2, 1.0 / 3.0);
         } else {
             const Preimages rm = equivalents(*mid);
-            centroid = interpolateIn(span(rm), table.of(t[2]), 1.0 / 3.0);
+            centroid = interpolateIn(span(rm), table->of(t[2]), 1.0 / 3.0);
         }
-        out[f] = centroid ? centroid->face : kInvalidIndex;
+        domainFaceCache_[f] = centroid ? centroid->face : kInvalidIndex;
     });
-    return out;
+    return domainFaceCache_;
 }
 
 std::shared_ptr<const ConsistentMesh::VertexPreimages> ConsistentMesh::vertexPreimages() const {
@@ -407,6 +488,13 @@ std::shared_ptr<const ConsistentMesh::VertexPreimages> ConsistentMesh::vertexPre
     });
     preimageTable_ = built;
     return preimageTable_;
+}
+
+std::shared_ptr<const ConsistentMesh::VertexPreimages>
+ConsistentMesh::currentVertexPreimages() const {
+    if (preimageTable_ && preimageTable_->offsets.size() == vertices_.size() + 1)
+        return preimageTable_;
+    return nullptr;
 }
 
 std::optional<int> ConsistentMesh::parameterOrientation(Index f) const {
@@ -450,7 +538,14 @@ Index ConsistentMesh::splitFace(Index f, MeshVertex v, int phase) {
 }
 
 void ConsistentMesh::setVertex(Index v, const MeshVertex& x, int phase) {
-    preimageTable_.reset();
+    // The preimage tables depend on preimages only (the normal wiggle keeps
+    // them).
+    const Preimage& old = vertices_[v].preimage;
+    if (old.face != x.preimage.face || std::memcmp(&old.u, &x.preimage.u, sizeof old.u) != 0 ||
+        std::memcmp(&old.v, &x.preimage.v, sizeof old.v) != 0) {
+        preimageTable_.reset();
+        forgetFacesOf(v);
+    }
     vertices_[v] = x;
     if (phase >= 0) {
         vertices_[v].phase = phase;
@@ -564,6 +659,10 @@ void ConsistentMesh::compact() {
     if (n == vertexCount())
         return;
     preimageTable_.reset();
+    // Faces keep their slots and their corners' preimages: the face caches
+    // stay valid across the renumbering.
+    std::vector<std::int8_t> orientation = std::move(orientationCache_);
+    std::vector<Index> domainFace = std::move(domainFaceCache_);
     std::vector<MeshVertex> vertices(n);
     for (Index v = 0; v < vertexCount(); ++v)
         if (newIndex[v] != kInvalidIndex)
@@ -583,6 +682,8 @@ void ConsistentMesh::compact() {
             w = newIndex[w];
     for (Index f = 0; f < faceCount(); ++f)
         attachFace(f);
+    orientationCache_ = std::move(orientation);
+    domainFaceCache_ = std::move(domainFace);
 }
 
 int ConsistentMesh::edgeTag(Index a, Index b) const {
@@ -599,6 +700,7 @@ void ConsistentMesh::setEdgeTag(Index a, Index b, int tag) {
 
 void ConsistentMesh::shiftVertex(Index v, const Preimage& p, VertexLabel label, int phase) {
     preimageTable_.reset();
+    forgetFacesOf(v);
     MeshVertex moved = evaluate(p);
     moved.label = label;
     moved.provenance = Provenance::Shifted;

@@ -88,6 +88,10 @@ public:
 
     // Evaluates f, n, g and the radial curvature at p; the label is sign(g).
     MeshVertex evaluate(const Preimage& p) const;
+    // The same without the radial curvature (NaN): what the label and the
+    // facing of a candidate need. Every other field has evaluate()'s exact
+    // value, so evaluate() of a chosen candidate gives the same record.
+    MeshVertex evaluateWithoutCurvature(const Preimage& p) const;
 
     // Building (initialization and reloading a snapshot).
     Index addVertex(const MeshVertex& v);
@@ -192,11 +196,32 @@ public:
         }
     };
     std::shared_ptr<const VertexPreimages> vertexPreimages() const;
+    // The table if it is computed and current, else null (never computes it).
+    std::shared_ptr<const VertexPreimages> currentVertexPreimages() const;
     // Reuses a table computed for a mesh with the same vertex preimages
     // (reloading a snapshot).
     void adoptVertexPreimages(std::shared_ptr<const VertexPreimages> table) {
         preimageTable_ = std::move(table);
     }
+
+    // What parameterOrientations() and centroidDomainFaces() computed per
+    // face (each depends only on the face's three preimages, in order), kept
+    // until the face or one of its corners' preimages changes, so that a
+    // phase that edits a few faces recomputes only those (publish() calls
+    // both for every face). kUnknown where not computed; orientation
+    // kNoChart where the corners have no common chart.
+    static constexpr std::int8_t kOrientationUnknown = 2, kOrientationNoChart = 3;
+    static constexpr Index kDomainFaceUnknown = -2;
+    struct FaceCaches {
+        double chartTolerance = 0.0;
+        std::vector<std::int8_t> orientation;
+        std::vector<Index> domainFace;
+    };
+    FaceCaches faceCaches() const;
+    // Reuses the caches of a mesh with exactly these faces and vertex
+    // preimages (reloading a snapshot); ignored when the chart tolerance or
+    // the face count differs.
+    void adoptFaceCaches(const FaceCaches& caches);
 
 private:
     std::shared_ptr<const SmoothSurface> surface_;
@@ -209,6 +234,16 @@ private:
     HalfedgeMap halfedgeFace_;
     std::unordered_map<std::uint64_t, int> edgeTags_;
     mutable std::shared_ptr<const VertexPreimages> preimageTable_;
+    mutable std::vector<std::int8_t> orientationCache_;
+    mutable std::vector<Index> domainFaceCache_;
+    // Marks the faces around v unknown in the caches above.
+    void forgetFacesOf(Index v);
+    void forgetFace(Index f);
+    // Sizes the caches to the faces (new slots unknown).
+    void sizeFaceCaches() const;
+    // vertexPreimages() when it is current or worth building for
+    // `unknownFaces` faces, else null.
+    std::shared_ptr<const VertexPreimages> tableFor(size_t unknownFaces) const;
 
     static std::uint64_t key(Index a, Index b) {
         return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |

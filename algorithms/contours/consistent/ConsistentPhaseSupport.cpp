@@ -10,7 +10,6 @@
 #include <set>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
-#include <unordered_set>
 
 namespace contour::consistent {
 
@@ -52,7 +51,14 @@ struct PublishedVertices final : MethodState {
     std::shared_ptr<const Field> preimageFace, preimageUv;
     std::vector<MeshVertex> vertices;
     HalfedgeMap halfedges;
-    std::shared_ptr<const ConsistentMesh::VertexPreimages> preimages;
+    std::shared_ptr<const ConsistentMesh::VertexPreimages> preimages; // null if never built
+    // Per face: parameter orientation and centroid's domain face, so that a
+    // phase recomputes them only for the faces it edits.
+    ConsistentMesh::FaceCaches faceCaches;
+    // analyse() of the published mesh without the per-face fields publish()
+    // moved into the snapshot (facing, vbo, consistent): what the
+    // post-conditions read (phaseChecks()), a function of the mesh only.
+    std::shared_ptr<const Analysis> analysis;
 };
 
 std::shared_ptr<const Field> fieldPtr(const Snapshot& s, const char* name) {
@@ -134,15 +140,17 @@ ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
     m.assign(std::move(vertices),
              std::vector<Triangle>(mesh.triangles().begin(), mesh.triangles().end()), *fphase,
              published ? &published->halfedges : nullptr);
-    if (published)
-        m.adoptVertexPreimages(published->preimages);
-#ifdef CONTOUR_CHECK_INVARIANTS
     if (published) {
+        m.adoptVertexPreimages(published->preimages);
+        m.adoptFaceCaches(published->faceCaches);
+    }
+#ifdef CONTOUR_CHECK_INVARIANTS
+    if (published && m.currentVertexPreimages()) {
         ConsistentMesh fresh(m.surfacePtr(), m.camera(),
                              ctx.parameters.getDouble("chart-tolerance"));
         fresh.assign(m.vertices(), {}, {}, nullptr);
         const auto& a = *fresh.vertexPreimages();
-        const auto& b = *m.vertexPreimages();
+        const auto& b = *m.currentVertexPreimages();
         bool sameTable = a.offsets == b.offsets && a.reps.size() == b.reps.size();
         for (size_t i = 0; sameTable && i < a.reps.size(); ++i)
             sameTable = a.reps[i].face == b.reps[i].face && sameBits(a.reps[i].u, b.reps[i].u) &&
@@ -150,6 +158,18 @@ ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
         if (!sameTable)
             throw std::logic_error("consistent contours: the published vertex preimages do not "
                                    "match the snapshot's vertices");
+    }
+    if (published) {
+        // The adopted per-face caches against a fresh computation.
+        ConsistentMesh fresh(m.surfacePtr(), m.camera(),
+                             ctx.parameters.getDouble("chart-tolerance"));
+        fresh.assign(m.vertices(),
+                     std::vector<Triangle>(mesh.triangles().begin(), mesh.triangles().end()),
+                     *fphase, nullptr);
+        if (fresh.parameterOrientations() != m.parameterOrientations() ||
+            fresh.centroidDomainFaces() != m.centroidDomainFaces())
+            throw std::logic_error("consistent contours: the published face orientations or "
+                                   "centroid domain faces do not match the snapshot's faces");
         bool same = m.halfedges().size() == 3 * static_cast<size_t>(m.faceCount());
         for (Index f = 0; same && f < m.faceCount(); ++f)
             for (int i = 0; i < 3; ++i)
@@ -234,30 +254,29 @@ RadialClassification classifyRadialFaces(const ConsistentMesh& m) {
     RadialClassification c;
     c.radial.assign(m.faceCount(), 0);
     c.standard.assign(m.faceCount(), 0);
-    std::unordered_set<Index> onRadialEdge;
-    for (const auto& [k, tag] : m.edgeTags())
-        if (tag & kRadialEdge) {
-            const auto [a, b] = ConsistentMesh::edgeFromKey(k);
-            onRadialEdge.insert(a);
-            onRadialEdge.insert(b);
-        }
-    if (onRadialEdge.empty())
-        return c;
-    for (Index f = 0; f < m.faceCount(); ++f) {
-        const Triangle& t = m.face(f);
-        for (int i = 0; i < 3; ++i) {
-            const Index a = t[i], b = t[(i + 1) % 3], q = t[(i + 2) % 3];
-            if (!(m.edgeTag(a, b) & kRadialEdge))
+    // The faces on both sides of every radial edge (visiting the few tagged
+    // edges, not every face's three edges).
+    const auto isContour = [&](Index v) {
+        return m.vertex(v).label == VertexLabel::Contour;
+    };
+    for (const auto& [k, tag] : m.edgeTags()) {
+        if (!(tag & kRadialEdge))
+            continue;
+        const auto [a, b] = ConsistentMesh::edgeFromKey(k);
+        for (const Index f : {m.faceOfHalfedge(a, b), m.faceOfHalfedge(b, a)}) {
+            if (f == kInvalidIndex)
                 continue;
             c.radial[f] = 1;
-            const Index p = m.vertex(a).label == VertexLabel::Contour ? a : b;
-            const bool ccEdge = m.vertex(q).label == VertexLabel::Contour &&
-                                m.vertex(p).label == VertexLabel::Contour;
-            // q on another radial edge: one that is not a-b.
+            Index q = kInvalidIndex;
+            for (Index w : m.face(f))
+                if (w != a && w != b)
+                    q = w;
+            // A CC edge: q and the edge's C end p.
+            const bool ccEdge = isContour(q) && (isContour(a) || isContour(b));
+            // q on another radial edge (q is not on a-b).
             bool otherRadial = false;
-            for (Index w : m.neighbours(q))
-                if ((m.edgeTag(q, w) & kRadialEdge) && !(q == a && w == b) && !(q == b && w == a))
-                    otherRadial = true;
+            for (Index w : ccEdge ? std::vector<Index>{} : m.neighbours(q))
+                otherRadial = otherRadial || (m.edgeTag(q, w) & kRadialEdge);
             if (ccEdge || otherRadial)
                 c.standard[f] = 1;
         }
@@ -265,7 +284,11 @@ RadialClassification classifyRadialFaces(const ConsistentMesh& m) {
     return c;
 }
 
-Analysis analyse(const ConsistentMesh& m) {
+namespace {
+
+// analyse(); `published`, when given, is m.toTriangleMesh() (the same faces
+// in the same order), whose opposite half-edges replace the hash look-ups.
+Analysis analyseMesh(const ConsistentMesh& m, const TriangleMesh* published) {
     Analysis a;
     const Index nf = m.faceCount();
     a.facing.resize(nf);
@@ -298,8 +321,16 @@ Analysis analyse(const ConsistentMesh& m) {
     std::vector<Index> across(3 * static_cast<size_t>(nf));
     tbb::parallel_for(Index(0), nf, [&](Index f) {
         const Triangle& t = m.face(f);
-        for (int i = 0; i < 3; ++i)
-            across[3 * static_cast<size_t>(f) + i] = m.faceOfHalfedge(t[(i + 1) % 3], t[i]);
+        for (int i = 0; i < 3; ++i) {
+            Index g = kInvalidIndex;
+            if (published) {
+                const Index o = published->opposite(TriangleMesh::halfedge(f, i));
+                g = o == kInvalidIndex ? kInvalidIndex : o / 3;
+            } else {
+                g = m.faceOfHalfedge(t[(i + 1) % 3], t[i]);
+            }
+            across[3 * static_cast<size_t>(f) + i] = g;
+        }
     });
     for (Index f = 0; f < nf; ++f)
         for (int i = 0; i < 3; ++i) {
@@ -323,6 +354,12 @@ Analysis analyse(const ConsistentMesh& m) {
         a.cusps += m.vertex(v).cusp;
     }
     return a;
+}
+
+} // namespace
+
+Analysis analyse(const ConsistentMesh& m) {
+    return analyseMesh(m, nullptr);
 }
 
 void publish(Snapshot& s, ConsistentMesh& m) {
@@ -352,16 +389,40 @@ void publish(Snapshot& s, ConsistentMesh& m) {
         fphase[f] = m.facePhase(f);
     // faceDomainFace() of every face, at once.
     std::vector<int> domainFace = m.centroidDomainFaces();
+    // The tagged edges (a few hundred) located through their half-edges,
+    // which toTriangleMesh() numbers 3 f + corner as the faces are here.
     std::vector<int> radialEdge(mesh.edgeCount(), 0), cuspEdge(mesh.edgeCount(), 0);
-    if (!m.edgeTags().empty())
-        tbb::parallel_for(Index(0), mesh.edgeCount(), [&](Index e) {
-            const Index h = mesh.edgeHalfedge(e);
-            const int tag = m.edgeTag(mesh.from(h), mesh.to(h));
+    for (const auto& [k, tag] : m.edgeTags()) {
+        const auto [x, y] = ConsistentMesh::edgeFromKey(k);
+        for (const auto& [a, b] : {std::pair{x, y}, std::pair{y, x}}) {
+            const Index f = m.faceOfHalfedge(a, b);
+            if (f == kInvalidIndex)
+                continue;
+            int corner = 0;
+            while (m.face(f)[corner] != a)
+                ++corner;
+            const Index e = mesh.edge(TriangleMesh::halfedge(f, corner));
             radialEdge[e] = (tag & kRadialEdge) ? 1 : 0;
             cuspEdge[e] = (tag & kCuspEdge) ? 1 : 0;
-        });
+            break;
+        }
+    }
     const long long radialEdges = std::count(radialEdge.begin(), radialEdge.end(), 1);
-    Analysis a = analyse(m);
+    Analysis a = analyseMesh(m, &mesh);
+    auto kept = std::make_shared<Analysis>();
+    kept->folded = a.folded;
+    kept->noChart = a.noChart;
+    kept->inconsistent = a.inconsistent;
+    kept->undefinedVbo = a.undefinedVbo;
+    kept->fbEdges = a.fbEdges;
+    kept->degenerate = a.degenerate;
+    kept->contourVertices = a.contourVertices;
+    kept->cusps = a.cusps;
+    kept->foldedFaces = a.foldedFaces;
+    kept->firstFb = a.firstFb;
+    kept->firstUndefined = a.firstUndefined;
+    kept->firstDegenerate = a.firstDegenerate;
+    kept->firstFolded = a.firstFolded;
     RadialClassification radial = classifyRadialFaces(m);
     const long long radialFaces = std::count(radial.radial.begin(), radial.radial.end(), 1);
     const long long standardFaces = std::count(radial.standard.begin(), radial.standard.end(), 1);
@@ -423,7 +484,9 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     published->preimageUv = fieldPtr(s, fields::kPreimageUv);
     published->vertices = m.vertices();
     published->halfedges = m.halfedges();
-    published->preimages = m.vertexPreimages();
+    published->preimages = m.currentVertexPreimages();
+    published->faceCaches = m.faceCaches();
+    published->analysis = std::move(kept);
     s.methodState = std::move(published);
 }
 
@@ -504,7 +567,26 @@ std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, cons
 
 std::vector<InvariantCheck> phaseChecks(const PhaseContext& ctx, const Snapshot& s,
                                         const ConsistentMesh& m, bool afterContourInsertion) {
-    const Analysis a = analyse(m);
+    // The analysis publish() made of this very mesh (m is s reloaded), else
+    // a fresh one; Debug builds compare the two.
+    const PublishedVertices* published = publishedVertices(s);
+    const std::shared_ptr<const Analysis> kept = published ? published->analysis : nullptr;
+    const Analysis fresh = kept ? Analysis{} : analyse(m);
+#ifdef CONTOUR_CHECK_INVARIANTS
+    if (kept) {
+        const Analysis b = analyse(m);
+        if (b.folded != kept->folded || b.noChart != kept->noChart ||
+            b.inconsistent != kept->inconsistent || b.undefinedVbo != kept->undefinedVbo ||
+            b.fbEdges != kept->fbEdges || b.degenerate != kept->degenerate ||
+            b.contourVertices != kept->contourVertices || b.cusps != kept->cusps ||
+            b.foldedFaces != kept->foldedFaces || b.firstFb != kept->firstFb ||
+            b.firstUndefined != kept->firstUndefined ||
+            b.firstDegenerate != kept->firstDegenerate || b.firstFolded != kept->firstFolded)
+            throw std::logic_error("consistent contours: the published analysis differs from "
+                                   "the reloaded mesh's");
+    }
+#endif
+    const Analysis& a = kept ? *kept : fresh;
     std::vector<InvariantCheck> out = commonChecks(ctx, s, m, a);
     if (afterContourInsertion)
         for (InvariantCheck& c : contourInsertionChecks(ctx, m, a))

@@ -57,7 +57,9 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                         failed = true;
                         break;
                     }
-                    MeshVertex v = m.evaluate(*p);
+                    // g decides; the radial curvature is evaluated for the
+                    // root kept, below.
+                    MeshVertex v = m.evaluateWithoutCurvature(*p);
                     if (!root || std::abs(v.g) < std::abs(root->g))
                         root = v;
                     if (std::abs(v.g) <= tol) {
@@ -72,6 +74,7 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 }
                 unconverged += !converged;
                 progress = true;
+                root = m.evaluate(root->preimage);
                 root->label = VertexLabel::Contour;
                 root->provenance = Provenance::Inserted;
                 // Snap rule: shift an endpoint onto the root when it is within

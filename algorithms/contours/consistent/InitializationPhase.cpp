@@ -62,9 +62,10 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
                 found[i] = Found::Cancelled;
                 return;
             }
-            MeshVertex v = m.evaluate(*p);
-            if (v.label == la)
+            // The label decides; the radial curvature only for the split.
+            if (m.evaluateWithoutCurvature(*p).label == la)
                 continue;
+            MeshVertex v = m.evaluate(*p);
             v.provenance = Provenance::Inserted;
             at[i] = v;
             found[i] = Found::Split;

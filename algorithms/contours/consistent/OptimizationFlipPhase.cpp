@@ -4,6 +4,7 @@
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
+#include "contours/consistent/RadialTriangles.h"
 
 namespace contour::consistent {
 
@@ -19,7 +20,8 @@ struct FlipStats {
 // `minQuality` ("tiny triangles", threshold unspecified in the paper), a
 // fold (parameter space or 3D), an undefined VBO or a degenerate CC edge
 // are discarded. Tagged edges (radial, cusp) are kept: a flip drops the tag.
-bool flipBest(ConsistentMesh& m, Index f, double minQuality, int phase, FlipStats& st) {
+bool flipBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int phase,
+              FlipStats& st) {
     const Triangle t = m.face(f);
     LocalEdit before(m), after(m);
     LocalScore best;
@@ -36,8 +38,12 @@ bool flipBest(ConsistentMesh& m, Index f, double minQuality, int phase, FlipStat
             m.faceOfHalfedge(d, c) != kInvalidIndex)
             continue;
         // A flip changes the valence of all four vertices; a cusp keeps the
-        // valence 4 of Fig. 18d.
-        if (m.vertex(a).cusp || m.vertex(b).cusp || m.vertex(c).cusp || m.vertex(d).cusp)
+        // valence 4 of Fig. 18d until radial edges are added around it
+        // (Fig. 18e), or always with optimization-cusp-edits off.
+        bool locked = false;
+        for (Index w : {a, b, c, d})
+            locked = locked || (m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w)));
+        if (locked)
             continue;
         before.clear();
         before.addFaces({f0, f1});
@@ -73,10 +79,11 @@ void runOptimizationFlips(const PhaseContext& ctx, Snapshot& s) {
     const int phase = s.phaseIndex;
     const double minQuality = ctx.parameters.getDouble("flip-min-quality");
     const int maxSweeps = ctx.parameters.getInt("flip-max-sweeps");
+    const bool cuspEdits = ctx.parameters.getBool("optimization-cusp-edits");
     OptimizationTally tally;
     FlipStats st;
     sweepInconsistent(ctx, m, maxSweeps, false, tally,
-                      [&](Index f) { return flipBest(m, f, minQuality, phase, st); });
+                      [&](Index f) { return flipBest(m, f, minQuality, cuspEdits, phase, st); });
     publish(s, m);
     publishTally(s, tally, "faces", "flip-max-sweeps");
     s.setCounter("flips", static_cast<double>(tally.accepted));
@@ -112,6 +119,18 @@ void addOptimizationFlipPhase(Method& m) {
                             1,
                             10000,
                             {}});
+    m.parameters.push_back(
+        {"optimization-cusp-edits",
+         "Optimization: edit at cusps",
+         "Optimization flips and edge splits (§6.4) may change the valence of a cusp vertex "
+         "once radial edges surround it (Fig. 18e): the valence 4 of Fig. 18d is needed only "
+         "for radial edge insertion, and §6.4 sets no such limit. Off: no flip or split ever "
+         "touches a cusp's valence.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
     m.phases.push_back(
         {"optimization-flips",
          "§6.4 Edge Flipping: for every inconsistent face, the flip of one of its edges that "

@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <vector>
 
 namespace contour::consistent {
 
@@ -73,7 +76,8 @@ std::optional<MeshVertex> radialRoot(const ConsistentMesh& m, const MeshVertex& 
         const std::optional<Preimage> u = m.interpolate(a, b, t);
         if (!u)
             return std::nullopt;
-        MeshVertex x = m.evaluate(*u);
+        // The radial curvature of the chosen sample is evaluated by wiggle().
+        MeshVertex x = m.evaluateWithoutCurvature(*u);
         const double h = radialPlaneDistance(m.camera(), p, x.position);
         if (std::abs(h) <= tolerance)
             return x;
@@ -132,25 +136,44 @@ bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, Wi
     const std::vector<Index> ring = m.neighbours(v);
     std::optional<MeshVertex> best;
     LocalScore bestScore;
-    auto consider = [&](MeshVertex x) {
+    // A sample's score depends on the sample alone (computed in parallel
+    // for the lattice, each task with its own LocalEdit); the choice below
+    // takes them in order, so it is the serial one.
+    struct Scored {
+        bool eligible = false;
+        int count = 0;        // inconsistent faces around v after the move
+        double quality = 0.0; // their minimum quality, when count improves
+    };
+    auto scoreOf = [&](LocalEdit& e, const MeshVertex& x) {
+        Scored r;
         if (x.label == VertexLabel::Contour)
-            return;
+            return r;
         if (partner != kInvalidIndex && x.label != current.label)
-            return;
+            return r;
         // An FB edge would make its faces' VBO undefined.
         if (std::any_of(ring.begin(), ring.end(), [&](Index w) {
                 return static_cast<int>(m.vertex(w).label) * static_cast<int>(x.label) < 0;
             }))
+            return r;
+        e.moveVertex(v, x);
+        r.eligible = true;
+        r.count = e.inconsistent();
+        if (r.count < now.inconsistent)
+            r.quality = e.minQuality();
+        return r;
+    };
+    auto decide = [&](MeshVertex x, const Scored& r) {
+        if (!r.eligible)
+            return;
+        const int count = r.count;
+        if (count >= now.inconsistent || (best && count > bestScore.inconsistent))
+            return;
+        const LocalScore trial{count, r.quality};
+        if (best && !betterScore(trial, bestScore))
             return;
         x.provenance = Provenance::Wiggled;
         x.phase = phase;
         edit.moveVertex(v, x);
-        const int count = edit.inconsistent();
-        if (count >= now.inconsistent || (best && count > bestScore.inconsistent))
-            return;
-        const LocalScore trial{count, edit.minQuality()};
-        if (best && !betterScore(trial, bestScore))
-            return;
         bool ok = edit.labelsValid();
         for (size_t i = 0; ok && i < star.size(); ++i)
             ok = turned[i] || !edit.turnedOver(edit.faces()[i]);
@@ -162,26 +185,47 @@ bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, Wi
         best = x;
         bestScore = trial;
     };
+    auto consider = [&](const MeshVertex& x) {
+        decide(x, scoreOf(edit, x));
+    };
     const MeshVertex* p = partner != kInvalidIndex ? &m.vertex(partner) : nullptr;
     const Lattice& grid = set.grid;
+    // Lattice samples in their fixed order (face, row, position in the row):
+    // preimages first, one chart search per row; then evaluated in parallel
+    // without the radial curvature (only f, n and g decide); then considered
+    // one by one in that order, so the choice does not depend on the thread
+    // count.
+    std::vector<Preimage> samples;
+    std::vector<double> rowT, levels;
+    std::vector<std::optional<Preimage>> endsA, endsB;
+    std::vector<std::optional<Preimage>> rowU;
     for (const Triangle& face : edit.faces()) {
         int k = 0;
         while (face[k] != v)
             ++k;
         const Preimage pv = current.preimage, pa = m.vertex(face[(k + 1) % 3]).preimage,
                        pb = m.vertex(face[(k + 2) % 3]).preimage;
+        // The rows' ends on v-a and v-b, one chart search per edge.
+        levels.resize(static_cast<size_t>(std::max(grid.n - 2, 0)));
+        for (int row = 2; row < grid.n; ++row)
+            levels[static_cast<size_t>(row - 2)] = static_cast<double>(row) / grid.n;
+        endsA.resize(levels.size());
+        endsB.resize(levels.size());
+        m.interpolate(pv, pa, levels, endsA);
+        m.interpolate(pv, pb, levels, endsB);
         for (int row = 2; row < grid.n; ++row) {
-            const double level = static_cast<double>(row) / grid.n;
-            const std::optional<Preimage> ra = m.interpolate(pv, pa, level);
-            const std::optional<Preimage> rb = m.interpolate(pv, pb, level);
+            const std::optional<Preimage>& ra = endsA[static_cast<size_t>(row - 2)];
+            const std::optional<Preimage>& rb = endsB[static_cast<size_t>(row - 2)];
             if (p) {
                 // The radial curve crosses this row where h_p changes sign.
                 if (!ra || !rb) {
                     ++st.cancelledSamples;
                     continue;
                 }
-                const double ha = radialPlaneDistance(m.camera(), *p, m.evaluate(*ra).position);
-                const double hb = radialPlaneDistance(m.camera(), *p, m.evaluate(*rb).position);
+                const double ha =
+                    radialPlaneDistance(m.camera(), *p, m.evaluateWithoutCurvature(*ra).position);
+                const double hb =
+                    radialPlaneDistance(m.camera(), *p, m.evaluateWithoutCurvature(*rb).position);
                 if (!((ha < 0.0 && hb > 0.0) || (ha > 0.0 && hb < 0.0)))
                     continue;
                 const std::optional<MeshVertex> x =
@@ -193,22 +237,46 @@ bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, Wi
                 consider(*x);
                 continue;
             }
-            for (int j = 1; j < row; ++j) {
-                // Appendix B charts; a missing chart drops the sample.
-                const std::optional<Preimage> u =
-                    ra && rb ? m.interpolate(*ra, *rb, static_cast<double>(j) / row)
-                             : std::optional<Preimage>();
-                if (!u) {
+            // Appendix B charts; a missing chart drops the sample.
+            if (!ra || !rb) {
+                st.cancelledSamples += row - 1;
+                continue;
+            }
+            rowT.resize(static_cast<size_t>(row - 1));
+            rowU.resize(rowT.size());
+            for (int j = 1; j < row; ++j)
+                rowT[static_cast<size_t>(j - 1)] = static_cast<double>(j) / row;
+            m.interpolate(*ra, *rb, rowT, rowU);
+            for (const std::optional<Preimage>& u : rowU) {
+                if (u)
+                    samples.push_back(*u);
+                else
                     ++st.cancelledSamples;
-                    continue;
-                }
-                consider(m.evaluate(*u));
             }
         }
     }
+    if (!samples.empty()) {
+        std::vector<MeshVertex> evaluated(samples.size());
+        std::vector<Scored> scored(samples.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 16),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              LocalEdit local(m);
+                              local.addFaces(star);
+                              for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  evaluated[i] = m.evaluateWithoutCurvature(samples[i]);
+                                  scored[i] = scoreOf(local, evaluated[i]);
+                              }
+                          });
+        for (size_t i = 0; i < samples.size(); ++i)
+            decide(evaluated[i], scored[i]);
+    }
     if (!best)
         return false;
-    m.setVertex(v, *best, phase);
+    // The chosen sample's full record (with its radial curvature).
+    MeshVertex chosen = m.evaluate(best->preimage);
+    chosen.provenance = Provenance::Wiggled;
+    chosen.phase = phase;
+    m.setVertex(v, chosen, phase);
     st.radialMoved += p != nullptr;
     return true;
 }

@@ -28,8 +28,9 @@ enum class Outcome {
     CuspAmbiguous,  // a cusp whose outside region (Fig. 18e) is not identified
     LessConsistent, // radial-keep-consistency: more inconsistent faces than before
     NextToCusp,     // would raise the valence of a cusp left without radial edges
+    CuspInside,     // radial-cusp-inside-hops: the inside region of a nearby cusp (Fig. 18e)
 };
-constexpr int kOutcomes = 12;
+constexpr int kOutcomes = 13;
 const char* kOutcomeCounters[kOutcomes] = {
     "radial edges inserted",
     "skipped: no crossing face",
@@ -43,6 +44,7 @@ const char* kOutcomeCounters[kOutcomes] = {
     "skipped: cusp outside region ambiguous",
     "skipped: more inconsistent faces",
     "skipped: next to a cusp without radial edges",
+    "skipped: inside region of a nearby cusp",
 };
 
 struct Settings {
@@ -51,6 +53,7 @@ struct Settings {
     double jointMinBarycentric = 0.05;
     long long jointMaxEvaluations = 20000;
     bool keepConsistency = true;
+    int cuspInsideHops = 0;
 };
 
 // The preimage at barycentric coordinates b of the corners t (appendix B
@@ -86,9 +89,11 @@ public:
     // a cusp, two on the outside region (Fig. 18e).
     void process(Index p) {
         if (!m_.vertex(p).cusp) {
+            const VertexLabel inside = cuspInsideSide(p);
             for (VertexLabel side : {VertexLabel::Front, VertexLabel::Back})
                 if (radialEdgesOnSide(m_, p, side) == 0)
-                    ++counts[static_cast<int>(insertOnSide(p, side))];
+                    ++counts[static_cast<int>(side == inside ? Outcome::CuspInside
+                                                             : insertOnSide(p, side))];
             return;
         }
         // Fig. 18e: the outside region is where the radial curve leaves the
@@ -110,6 +115,39 @@ private:
     ConsistentMesh& m_;
     const Settings& set_;
     const int phase_;
+
+    // Fig. 18e: no radial triangles in a cusp's "inside" region (the side
+    // opposite its two radial edges). With radial-cusp-inside-hops k > 0,
+    // that region also covers the side of the C vertices up to k contour
+    // edges from the cusp: their radial curves on that side run across the
+    // thin image wedge between the cusp's two branches and meet the other
+    // branch. Returns that side, or Contour (none) when p is farther, or the
+    // cusp's outside is unknown (no radial edges, cusps are processed first).
+    VertexLabel cuspInsideSide(Index p) const {
+        if (set_.cuspInsideHops <= 0)
+            return VertexLabel::Contour;
+        std::vector<Index> frontier{p}, seen{p};
+        for (int hop = 0; hop < set_.cuspInsideHops && !frontier.empty(); ++hop) {
+            std::vector<Index> next;
+            for (Index v : frontier)
+                for (Index w : m_.neighbours(v)) {
+                    if (m_.vertex(w).label != VertexLabel::Contour ||
+                        std::find(seen.begin(), seen.end(), w) != seen.end())
+                        continue;
+                    seen.push_back(w);
+                    if (m_.vertex(w).cusp) {
+                        const int front = radialEdgesOnSide(m_, w, VertexLabel::Front);
+                        const int back = radialEdgesOnSide(m_, w, VertexLabel::Back);
+                        if (front != back)
+                            return front > back ? VertexLabel::Back : VertexLabel::Front;
+                        continue;
+                    }
+                    next.push_back(w);
+                }
+            frontier = std::move(next);
+        }
+        return VertexLabel::Contour;
+    }
 
     double distance(Index p, const Vec3& q) const {
         return radialPlaneDistance(m_.camera(), m_.vertex(p), q);
@@ -430,6 +468,7 @@ void runRadialEdgeInsertion(const PhaseContext& ctx, Snapshot& s) {
     set.jointMinBarycentric = ctx.parameters.getDouble("radial-joint-min-barycentric");
     set.jointMaxEvaluations = ctx.parameters.getInt("radial-joint-max-evaluations");
     set.keepConsistency = ctx.parameters.getBool("radial-keep-consistency");
+    set.cuspInsideHops = ctx.parameters.getInt("radial-cusp-inside-hops");
     RadialInserter inserter(m, set, s.phaseIndex);
     // Only C vertices and their fans are visited; inserted vertices are
     // never C, so the list is fixed.
@@ -559,6 +598,20 @@ void addRadialEdgeInsertionPhase(Method& m) {
          true,
          0,
          0,
+         {}});
+    m.parameters.push_back(
+        {"radial-cusp-inside-hops",
+         "Cusp inside region (contour edges)",
+         "§6.3 (Fig. 18e) builds no radial triangles in a cusp's \"inside\" region. 0: only "
+         "the cusp vertex itself gets none on that side (its two radial edges go to the "
+         "outside); k > 0: neither do the C vertices up to k contour edges away from the cusp "
+         "(their inside radial curves cross the thin wedge between the cusp's branches). The "
+         "paper does not say how far the region reaches; 1 (the cusp's fan) is the smallest "
+         "region that holds no radial triangle.",
+         ParameterType::Int,
+         1,
+         0,
+         100,
          {}});
     m.phases.push_back(
         {"radial-edge-insertion",
