@@ -46,6 +46,7 @@
 // are compared with diff.
 // Case 1-5 and Trial count of the published file are ConTesse's failure
 // categories and retries: they have no counterpart here.
+#include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
 #include "mesh/MeshReader.h"
@@ -71,6 +72,7 @@
 #include <vector>
 
 using namespace contour;
+using namespace contour::bench;
 
 namespace {
 
@@ -84,20 +86,6 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// A field of /proc/self/status in kB ("VmRSS", "VmHWM"), or -1 if unreadable.
-long long statusKb(const std::string& key) {
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind(key + ":", 0) == 0) {
-            std::istringstream fields(line.substr(key.size() + 1));
-            long long kb = -1;
-            fields >> kb;
-            return kb;
-        }
-    return -1;
-}
-
 // Writing 5 to clear_refs resets VmHWM to the current RSS (Linux >= 4.0), so
 // each mesh gets its own peak. False when the kernel refuses.
 bool resetPeakRss() {
@@ -105,13 +93,6 @@ bool resetPeakRss() {
     out << "5";
     out.flush();
     return static_cast<bool>(out);
-}
-
-std::string loadAverage() {
-    std::ifstream in("/proc/loadavg");
-    std::string one, five, fifteen;
-    in >> one >> five >> fifteen;
-    return in ? one + " " + five + " " + fifteen : std::string("unknown");
 }
 
 std::string csvEscape(const std::string& s) {
@@ -195,17 +176,6 @@ std::optional<std::string> matchPublished(const std::map<std::string, double>& r
             candidates.push_back(row);
     if (candidates.size() == 1)
         return candidates.front();
-    return std::nullopt;
-}
-
-std::optional<std::filesystem::path> findMeshFile(const std::filesystem::path& dir,
-                                                  const std::string& name) {
-    for (const char* extension : {".obj", ".off", ".ply"}) {
-        const std::filesystem::path p = dir / (name + extension);
-        std::error_code error;
-        if (std::filesystem::is_regular_file(p, error))
-            return p;
-    }
     return std::nullopt;
 }
 

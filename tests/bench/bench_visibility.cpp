@@ -40,6 +40,7 @@
 // the graph calls visible; covered = the same counting hidden chains within
 // 1 px of a visible one in the image (drawn anyway); excluded = length within 1 px of a node or
 // outside the image, of all the length sampled.
+#include "BenchSupport.h"
 #include "DepthBufferCheck.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
@@ -64,24 +65,9 @@
 
 using namespace contour;
 using namespace contour::testing;
+using namespace contour::bench;
 
 namespace {
-
-std::optional<std::filesystem::path> findMeshFile(const std::string& dir, const std::string& name) {
-    for (const char* ext : {".obj", ".off", ".ply"}) {
-        const std::filesystem::path p = std::filesystem::path(dir) / (name + ext);
-        if (std::filesystem::exists(p))
-            return p;
-    }
-    return std::nullopt;
-}
-
-std::string loadAverage() {
-    std::ifstream in("/proc/loadavg");
-    std::string one, five, fifteen;
-    in >> one >> five >> fifteen;
-    return in ? one + " " + five + " " + fifteen : std::string("unknown");
-}
 
 // Every snapshot of a run of `method`, defaults overridden by `overrides`.
 std::vector<Snapshot>
