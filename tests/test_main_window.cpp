@@ -140,6 +140,8 @@ private slots:
     void badFileShowsErrorWithoutCrash();
     void dropOpensFile();
     void grabMainWindow();
+    void controlCageWireframe();
+    void eitherViewMaximised();
 
 private:
     QString sample(const QString& name);
@@ -590,6 +592,63 @@ void TestMainWindow::grabMainWindow() {
     const ColourCounts counts = countColours(image);
     QVERIFY(counts.front > 1000);
     QVERIFY(counts.back > 100);
+}
+
+// Near-black pixels: the control cage's wireframe (the surface is shaded in
+// yellows and blues, the background is a grey gradient).
+long long nearBlackPixels(const QImage& image) {
+    const QImage rgb = image.convertToFormat(QImage::Format_RGB32);
+    long long n = 0;
+    for (int y = 0; y < rgb.height(); ++y)
+        for (int x = 0; x < rgb.width(); ++x)
+            n += QColor::fromRgb(rgb.pixel(x, y)).valueF() < 0.15;
+    return n;
+}
+
+void TestMainWindow::controlCageWireframe() {
+    QVERIFY(window_->openMesh(sample(QStringLiteral("torus"))));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    SceneView3D* view = window_->sceneView();
+    QAction* cage = window_->controlCageAction();
+    QVERIFY(cage && cage->isCheckable() && !cage->isChecked());
+    QCOMPARE(view->controlCageEdgesShown(), 0LL);
+    const QImage off = view->grabImage();
+    cage->trigger();
+    QVERIFY(view->showsControlCage());
+    // Every edge of the cage once: a closed quad mesh has 2 edges per face.
+    const Snapshot s = window_->currentSnapshot();
+    QVERIFY(s.cage);
+    QCOMPARE(view->controlCageEdgesShown(), 2LL * s.cage->faceCount());
+    const QImage on = view->grabImage();
+    on.save(grabPath(QStringLiteral("control_cage")));
+    const long long added = nearBlackPixels(on) - nearBlackPixels(off);
+    qInfo("control cage: %lld edges, %lld more near-black pixels", view->controlCageEdgesShown(),
+          added);
+    QVERIFY(added > 500);
+    // Kept across a step.
+    window_->stepBack();
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    QCOMPARE(view->controlCageEdgesShown(), 2LL * s.cage->faceCount());
+    cage->trigger();
+    QCOMPARE(view->controlCageEdgesShown(), 0LL);
+}
+
+void TestMainWindow::eitherViewMaximised() {
+    using L = MainWindow::ViewLayout;
+    QCOMPARE(window_->viewLayout(), L::Both);
+    const int bothWidth = window_->sceneView()->width();
+    window_->setViewLayout(L::SceneOnly);
+    QCoreApplication::processEvents();
+    QVERIFY(window_->sceneView()->isVisible() && !window_->imageView()->isVisible());
+    QVERIFY(window_->sceneView()->width() > bothWidth);
+    window_->setViewLayout(L::ImageOnly);
+    QCoreApplication::processEvents();
+    QVERIFY(!window_->sceneView()->isVisible() && window_->imageView()->isVisible());
+    QCOMPARE(window_->viewLayout(), L::ImageOnly);
+    window_->setViewLayout(L::Both);
+    QCoreApplication::processEvents();
+    QVERIFY(window_->sceneView()->isVisible() && window_->imageView()->isVisible());
+    QCOMPARE(window_->viewLayout(), L::Both);
 }
 
 int main(int argc, char** argv) {

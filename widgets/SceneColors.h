@@ -28,6 +28,7 @@ inline constexpr SceneColor kContour2D{0.0, 0.0, 0.0};           // black on the
 inline constexpr SceneColor kBoundary{0.10, 0.70, 0.25};         // green
 inline constexpr SceneColor kIntersection{0.85, 0.20, 0.85};     // magenta
 inline constexpr SceneColor kFrustum{0.92, 0.92, 0.92};          // light grey
+inline constexpr SceneColor kControlCage{0.10, 0.10, 0.10};      // near black wireframe
 // Consistent contours (Bénard 2014). Faces coloured by VBO use the facing
 // colours for F and B and this green for an undefined VBO.
 inline constexpr SceneColor kUndefinedVbo{0.25, 0.85, 0.15}; // green, hue ~109°

@@ -306,6 +306,14 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     highlightActor_->PickableOff();
     overlayRenderer_->AddActor(highlightActor_);
 
+    cageActor_->SetMapper(cageMapper_);
+    setColor(cageActor_->GetProperty(), sceneColors::kControlCage);
+    cageActor_->GetProperty()->SetLineWidth(1.0f);
+    cageActor_->GetProperty()->LightingOff();
+    cageActor_->VisibilityOff();
+    cageActor_->PickableOff();
+    ren->AddActor(cageActor_);
+
     frustumActor_->SetMapper(frustumMapper_);
     setColor(frustumActor_->GetProperty(), sceneColors::kFrustum);
     frustumActor_->GetProperty()->SetLineWidth(1.5f);
@@ -361,10 +369,27 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
         curveMapper_->SetInputData(curvesToPolyData(curves));
         curveCount_ = static_cast<int>(curves.size());
     }
+    if (snapshot.cage != shownCage_) {
+        shownCage_ = snapshot.cage;
+        if (shownCage_)
+            cageMapper_->SetInputData(cageToPolyData(*shownCage_));
+    }
+    cageActor_->SetVisibility(showCage_ && shownCage_);
     updateViewGraph();
     updateHighlight();
     requestRender();
     emit snapshotChanged();
+}
+
+void SceneView3D::setShowControlCage(bool show) {
+    showCage_ = show;
+    cageActor_->SetVisibility(showCage_ && shownCage_);
+    requestRender();
+}
+
+long long SceneView3D::controlCageEdgesShown() const {
+    vtkPolyData* cage = cageMapper_->GetInput();
+    return cageActor_->GetVisibility() && cage ? cage->GetNumberOfLines() : 0;
 }
 
 void SceneView3D::setColorField(const std::string& field) {
@@ -707,6 +732,8 @@ void SceneView3D::clearScene() {
     curveActor_->VisibilityOff();
     updateViewGraph();
     frustumActor_->VisibilityOff();
+    shownCage_.reset();
+    cageActor_->VisibilityOff();
     updateHighlight();
     requestRender();
     emit snapshotChanged();

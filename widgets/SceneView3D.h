@@ -166,6 +166,11 @@ public:
 
     // True when the frustum is drawn (decided before each render).
     bool isFrustumVisible() const;
+    // The control cage (Snapshot::cage) as a wireframe, off by default.
+    void setShowControlCage(bool show);
+    bool showsControlCage() const { return showCage_; }
+    // Cage edges drawn (0 while hidden or without a cage).
+    long long controlCageEdgesShown() const;
     // True when this view's camera shows the analysis camera's view.
     bool viewMatchesAnalysisCamera() const;
 
@@ -214,6 +219,10 @@ private:
     vtkNew<vtkScalarBarActor> scalarBar_;
     vtkNew<vtkPolyDataMapper> frustumMapper_;
     vtkNew<vtkActor> frustumActor_;
+    vtkNew<vtkPolyDataMapper> cageMapper_;
+    vtkNew<vtkActor> cageActor_;
+    std::shared_ptr<const PolygonMesh> shownCage_;
+    bool showCage_ = false;
     vtkNew<vtkLookupTable> labelColors_;
 
     struct OverlayLayer {

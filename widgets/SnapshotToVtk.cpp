@@ -3,6 +3,7 @@
 #include "pipeline/FieldNames.h"
 
 #include <algorithm>
+#include <set>
 #include <span>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -202,6 +203,29 @@ vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curve
     poly->SetLines(makeCells(offsets, connectivity));
     poly->GetCellData()->AddArray(types);
     poly->GetCellData()->SetActiveScalars(kVtkCurveTypeArray);
+    return poly;
+}
+
+vtkSmartPointer<vtkPolyData> cageToPolyData(const PolygonMesh& cage) {
+    std::set<std::pair<Index, Index>> edges;
+    for (Index f = 0; f < cage.faceCount(); ++f) {
+        const std::span<const Index> polygon = cage.face(f);
+        for (std::size_t i = 0; i < polygon.size(); ++i) {
+            const Index a = polygon[i];
+            const Index b = polygon[(i + 1) % polygon.size()];
+            edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    }
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+    for (const auto& [a, b] : edges) {
+        connectivity.push_back(a);
+        connectivity.push_back(b);
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(cage.positions));
+    poly->SetLines(makeCells(offsets, connectivity));
     return poly;
 }
 

@@ -60,6 +60,10 @@ vtkSmartPointer<vtkDoubleArray> smoothSurfaceNormals(const Snapshot& snapshot);
 // cell array kVtkCurveTypeArray holding static_cast<int>(CurveType).
 vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curves);
 
+// The control cage as a wireframe: every edge of the polygons once, as a
+// line cell between two of the cage's own points.
+vtkSmartPointer<vtkPolyData> cageToPolyData(const PolygonMesh& cage);
+
 // The view graph (Snapshot::viewGraph, pipeline/ViewGraph.h). The chains in
 // `state` (ViewGraphStyle.h: visible, hidden, simplified away) as one polyline
 // each through its 3D points (a closed chain already repeats its first

@@ -20,6 +20,7 @@
 #include "pipeline/FieldNames.h"
 
 #include <QAction>
+#include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QComboBox>
@@ -345,6 +346,28 @@ void MainWindow::createActions() {
     viewToCameraAction_ = view->addAction(tr("&Look through the analysis camera"), this,
                                           &MainWindow::resetViewToAnalysisCamera);
     viewToCameraAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
+    view->addSeparator();
+    cageAction_ = view->addAction(tr("Control &cage"));
+    cageAction_->setCheckable(true);
+    cageAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_C));
+    cageAction_->setToolTip(tr("Draw the control cage as a wireframe in the 3D view"));
+    connect(cageAction_, &QAction::toggled, sceneView_, &SceneView3D::setShowControlCage);
+    auto* layouts = new QActionGroup(this);
+    const std::array<std::pair<QString, Qt::Key>, 3> layoutNames{
+        {{tr("&Both views"), Qt::Key_0},
+         {tr("&3D view only"), Qt::Key_1},
+         {tr("&2D view only"), Qt::Key_2}}};
+    for (std::size_t i = 0; i < layoutNames.size(); ++i) {
+        QAction* a = view->addAction(layoutNames[i].first);
+        a->setCheckable(true);
+        a->setShortcut(QKeySequence(Qt::CTRL | layoutNames[i].second));
+        layouts->addAction(a);
+        connect(a, &QAction::triggered, this,
+                [this, i] { setViewLayout(static_cast<ViewLayout>(i)); });
+        layoutActions_[i] = a;
+    }
+    layoutActions_[0]->setChecked(true);
+    view->addSeparator();
 
     QToolBar* tools = addToolBar(tr("Phases"));
     tools->setObjectName(QStringLiteral("phaseToolBar"));
@@ -838,6 +861,18 @@ void MainWindow::showRunnerState() {
     // Facing appears with its phase without the selector's list changing.
     updateColorLegend();
     updateComparison();
+}
+
+void MainWindow::setViewLayout(ViewLayout layout) {
+    sceneView_->setVisible(layout != ViewLayout::ImageOnly);
+    imageView_->setVisible(layout != ViewLayout::SceneOnly);
+    layoutActions_[static_cast<std::size_t>(layout)]->setChecked(true);
+}
+
+MainWindow::ViewLayout MainWindow::viewLayout() const {
+    if (sceneView_->isHidden())
+        return ViewLayout::ImageOnly;
+    return imageView_->isHidden() ? ViewLayout::SceneOnly : ViewLayout::Both;
 }
 
 void MainWindow::createCompareSelector(QToolBar* toolBar) {

@@ -120,6 +120,14 @@ public:
     // The 3D view's view graph legend (QI colours, node dot colours).
     QLabel* viewGraphLegend() const { return viewGraphLegend_; }
 
+    // View › Control cage: the cage as a wireframe in the 3D view.
+    QAction* controlCageAction() const { return cageAction_; }
+    // View › Both views / 3D view only / 2D view only: either view can take
+    // the whole splitter.
+    enum class ViewLayout { Both, SceneOnly, ImageOnly };
+    void setViewLayout(ViewLayout layout);
+    ViewLayout viewLayout() const;
+
     // Method comparison (issue 6, item 4): a second method run on the same
     // mesh and camera, its curves and the differences shown in the 2D view.
     // An empty name turns it off; false for a name that is not a method.
@@ -213,6 +221,8 @@ private:
     void updateComparison();
 
     MethodComparison* comparison_ = nullptr;
+    QAction* cageAction_ = nullptr;
+    std::array<QAction*, 3> layoutActions_{};
     QComboBox* compareSelector_ = nullptr;
     SceneView3D* sceneView_ = nullptr;
     ImageView2D* imageView_ = nullptr;
