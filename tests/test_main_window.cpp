@@ -141,6 +141,7 @@ private slots:
     void dropOpensFile();
     void grabMainWindow();
     void controlCageWireframe();
+    void lighterDrawingWhileOrbiting();
     void eitherViewMaximised();
 
 private:
@@ -631,6 +632,28 @@ void TestMainWindow::controlCageWireframe() {
     QCOMPARE(view->controlCageEdgesShown(), 2LL * s.cage->faceCount());
     cage->trigger();
     QCOMPARE(view->controlCageEdgesShown(), 0LL);
+}
+
+void TestMainWindow::lighterDrawingWhileOrbiting() {
+    SceneView3D* view = window_->sceneView();
+    QVERIFY(!view->motionDrawing());
+    // A drag switches it on until the button is released.
+    const QPoint start(view->width() / 3, view->height() / 2);
+    QTest::mousePress(view, Qt::LeftButton, {}, start);
+    QTest::mouseMove(view, start + QPoint(20, 5));
+    QVERIFY(view->motionDrawing());
+    QTest::mouseRelease(view, Qt::LeftButton, {}, start + QPoint(20, 5));
+    QVERIFY(!view->motionDrawing());
+    // Thinner contours while on; back to the very same picture when off.
+    const QImage before = view->grabImage();
+    view->setMotionDrawing(true);
+    const QImage moving = view->grabImage();
+    view->setMotionDrawing(false);
+    const QImage after = view->grabImage();
+    const ColourCounts b = countColours(before), m = countColours(moving);
+    qInfo("contour pixels: still %lld, while moving %lld", b.contour, m.contour);
+    QVERIFY(m.contour < b.contour);
+    QVERIFY(after == before);
 }
 
 void TestMainWindow::eitherViewMaximised() {

@@ -11,13 +11,16 @@
 #include <limits>
 #include <numbers>
 #include <span>
+#include <vtkActorCollection.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellPicker.h>
+#include <vtkCommand.h>
 #include <vtkCoordinate.h>
 #include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
+#include <vtkInteractorObserver.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -314,6 +317,13 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     cageActor_->PickableOff();
     ren->AddActor(cageActor_);
 
+    if (vtkInteractorObserver* style = interactor()->GetInteractorStyle()) {
+        interactionObservers_ = {
+            style->AddObserver(vtkCommand::StartInteractionEvent, this,
+                               &SceneView3D::onInteraction),
+            style->AddObserver(vtkCommand::EndInteractionEvent, this, &SceneView3D::onInteraction)};
+    }
+
     frustumActor_->SetMapper(frustumMapper_);
     setColor(frustumActor_->GetProperty(), sceneColors::kFrustum);
     frustumActor_->GetProperty()->SetLineWidth(1.5f);
@@ -323,7 +333,44 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     ren->AddActor(frustumActor_);
 }
 
+void SceneView3D::setMotionDrawing(bool on) {
+    if (on == motionDrawing_)
+        return;
+    motionDrawing_ = on;
+    if (on) {
+        stillStyles_.clear();
+        for (vtkRenderer* r : {renderer(), overlayRenderer_.Get()}) {
+            vtkActorCollection* actors = r->GetActors();
+            actors->InitTraversal();
+            while (vtkActor* actor = actors->GetNextActor()) {
+                vtkProperty* p = actor->GetProperty();
+                stillStyles_.push_back(
+                    {p, p->GetLineWidth(), p->GetPointSize(), p->GetRenderPointsAsSpheres()});
+                p->SetLineWidth(std::min(p->GetLineWidth(), 1.0f));
+                p->SetPointSize(std::min(p->GetPointSize(), 3.0f));
+                p->RenderPointsAsSpheresOff();
+            }
+        }
+    } else {
+        for (const SavedStyle& s : stillStyles_) {
+            s.property->SetLineWidth(s.lineWidth);
+            s.property->SetPointSize(s.pointSize);
+            s.property->SetRenderPointsAsSpheres(s.spheres);
+        }
+        stillStyles_.clear();
+    }
+    updateOverlayVisibility();
+    requestRender();
+}
+
+void SceneView3D::onInteraction(vtkObject*, unsigned long eventId, void*) {
+    setMotionDrawing(eventId == vtkCommand::StartInteractionEvent);
+}
+
 SceneView3D::~SceneView3D() {
+    if (vtkInteractorObserver* style = interactor()->GetInteractorStyle())
+        for (unsigned long tag : interactionObservers_)
+            style->RemoveObserver(tag);
     renderWindow()->RemoveRenderer(overlayRenderer_);
 }
 
@@ -543,6 +590,8 @@ bool SceneView3D::isOverlayAvailable(SceneOverlay overlay) const {
 }
 
 bool SceneView3D::isOverlayShown(SceneOverlay overlay) const {
+    if (motionDrawing_ && overlay == SceneOverlay::RadialFaces)
+        return false;
     return isOverlayEnabled(overlay) && isOverlayAvailable(overlay) && meshActor_->GetVisibility();
 }
 

@@ -166,6 +166,14 @@ public:
 
     // True when the frustum is drawn (decided before each render).
     bool isFrustumVisible() const;
+    // Lighter drawing while the camera moves (the interactor style's
+    // start/end interaction events, or a caller such as a benchmark): every
+    // line 1 px wide, points as small squares instead of spheres, the
+    // translucent radial tint hidden. Software rendering spends most of an
+    // orbit frame on wide lines, sphere points and the tint (README,
+    // bench_workbench). Off restores every actor's own style.
+    void setMotionDrawing(bool on);
+    bool motionDrawing() const { return motionDrawing_; }
     // The control cage (Snapshot::cage) as a wireframe, off by default.
     void setShowControlCage(bool show);
     bool showsControlCage() const { return showCage_; }
@@ -221,6 +229,16 @@ private:
     vtkNew<vtkActor> frustumActor_;
     vtkNew<vtkPolyDataMapper> cageMapper_;
     vtkNew<vtkActor> cageActor_;
+    struct SavedStyle {
+        vtkProperty* property; // owned by its actor, which the view keeps
+        float lineWidth;
+        float pointSize;
+        bool spheres;
+    };
+    std::vector<SavedStyle> stillStyles_; // while motionDrawing_
+    bool motionDrawing_ = false;
+    std::array<unsigned long, 2> interactionObservers_{};
+    void onInteraction(vtkObject* caller, unsigned long eventId, void* callData);
     std::shared_ptr<const PolygonMesh> shownCage_;
     bool showCage_ = false;
     vtkNew<vtkLookupTable> labelColors_;

@@ -11,7 +11,9 @@
 // on; then the 3D view is orbited N times by 360/N degrees, each frame
 // scheduled and the event loop run until it is drawn (VTK renders in
 // paintGL, then Qt composes the window), as during an interactive orbit;
-// frames per second = N / wall time. The render count of the view
+// frames per second = N / wall time. Measured twice: with the full drawing,
+// and with the lighter drawing a drag switches on (SceneView3D::
+// setMotionDrawing: 1 px lines, square points, no translucent tint). The render count of the view
 // is checked to have grown by N (a frame that was not drawn is not counted).
 //
 // Part 2, step latency: the step model (default bob_quad: its consistent
@@ -159,34 +161,42 @@ int main(int argc, char** argv) {
             }
             const Snapshot s = window.currentSnapshot();
             const std::size_t faces = s.mesh ? s.mesh->faceCount() : 0;
-            // The first frame builds the GL buffers: not timed.
-            renderNextFrame(view);
-            const int rendersBefore = view->renderCount();
-            QElapsedTimer timer;
-            timer.start();
-            for (int f = 0; f < frames; ++f) {
-                view->orbit(360.0 / frames, 0.0);
-                if (!renderNextFrame(view))
-                    break;
-            }
-            view->makeCurrent();
-            QOpenGLContext::currentContext()->functions()->glFinish();
-            view->doneCurrent();
-            const double seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
-            const int drawn = view->renderCount() - rendersBefore;
-            const double fps = drawn / seconds;
             std::printf("orbit: %s, %s method (%.1f s to run), %zu faces, %d of %d overlays shown "
                         "and the view graph %s; view %dx%d px, renderer %s\n",
                         orbitMesh.c_str(), orbitMethod.c_str(),
                         static_cast<double>(runTimer.elapsed()) * 1e-3, faces, overlaysOn,
                         kSceneOverlayCount, view->hasViewGraph() ? "drawn" : "absent",
                         view->width(), view->height(), rendererName(view).c_str());
-            std::printf("orbit: %d frames requested, %d rendered, %.2f s: %.1f frames per "
-                        "second (%.1f ms per frame)\n",
-                        frames, drawn, seconds, fps, 1e3 * seconds / std::max(drawn, 1));
-            if (csv)
-                csv << "orbit," << orbitMesh << ',' << orbitMethod << ",," << faces << ',' << drawn
-                    << ',' << seconds << ',' << fps << ",\n";
+            // Once at full quality (a picture still being redrawn), once with
+            // the lighter drawing an interactive drag switches on.
+            for (const bool motion : {false, true}) {
+                view->setMotionDrawing(motion);
+                // The first frame builds the GL buffers: not timed.
+                renderNextFrame(view);
+                const int rendersBefore = view->renderCount();
+                QElapsedTimer timer;
+                timer.start();
+                for (int f = 0; f < frames; ++f) {
+                    view->orbit(360.0 / frames, 0.0);
+                    if (!renderNextFrame(view))
+                        break;
+                }
+                view->makeCurrent();
+                QOpenGLContext::currentContext()->functions()->glFinish();
+                view->doneCurrent();
+                const double seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
+                const int drawn = view->renderCount() - rendersBefore;
+                const double fps = drawn / seconds;
+                const char* drawing = motion ? "motion drawing" : "full drawing";
+                std::printf("orbit (%s): %d frames requested, %d rendered, %.2f s: %.1f frames per "
+                            "second (%.1f ms per frame)\n",
+                            drawing, frames, drawn, seconds, fps,
+                            1e3 * seconds / std::max(drawn, 1));
+                if (csv)
+                    csv << "orbit," << orbitMesh << ',' << orbitMethod << ',' << drawing << ','
+                        << faces << ',' << drawn << ',' << seconds << ',' << fps << ",\n";
+            }
+            view->setMotionDrawing(false);
         }
     } else {
         std::printf("orbit: %s not found in %s: skipped\n", orbitMesh.c_str(), meshesDir.c_str());
