@@ -17,11 +17,14 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
+#include <QDockWidget>
 #include <QFileInfo>
+#include <QLabel>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QPushButton>
 #include <QTemporaryDir>
+#include <QToolBar>
 #include <QUrl>
 #include <QtTest>
 #include <algorithm>
@@ -143,6 +146,7 @@ private slots:
     void controlCageWireframe();
     void lighterDrawingWhileOrbiting();
     void eitherViewMaximised();
+    void rightDockHoldsTogglesAndLegends();
 
 private:
     QString sample(const QString& name);
@@ -672,6 +676,31 @@ void TestMainWindow::eitherViewMaximised() {
     QCoreApplication::processEvents();
     QVERIFY(window_->sceneView()->isVisible() && window_->imageView()->isVisible());
     QCOMPARE(window_->viewLayout(), L::Both);
+}
+
+void TestMainWindow::rightDockHoldsTogglesAndLegends() {
+    auto* dock = window_->findChild<QDockWidget*>(QStringLiteral("displayDock"));
+    auto* inspector = window_->findChild<QDockWidget*>(QStringLiteral("inspectorDock"));
+    QVERIFY(dock && inspector);
+    QCOMPARE(window_->dockWidgetArea(dock), Qt::RightDockWidgetArea);
+    QCOMPARE(window_->dockWidgetArea(inspector), Qt::RightDockWidgetArea);
+    QVERIFY(dock->isVisible());
+    // The legends live in the dock.
+    QVERIFY(dock->isAncestorOf(window_->colorLegend()));
+    QVERIFY(dock->isAncestorOf(window_->viewGraphLegend()));
+    // Every overlay and view-graph toggle and the cage, the very actions of
+    // the tool bars and menus.
+    auto* toggles = dock->findChild<QToolBar*>(QStringLiteral("displayDockToggles"));
+    QVERIFY(toggles);
+    const QList<QAction*> actions = toggles->actions();
+    for (int i = 0; i < kSceneOverlayCount; ++i)
+        QVERIFY(actions.contains(window_->overlayAction(static_cast<SceneOverlay>(i))));
+    for (int i = 0; i < MainWindow::kViewGraphToggleCount; ++i)
+        QVERIFY(actions.contains(
+            window_->viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i))));
+    QVERIFY(actions.contains(window_->controlCageAction()));
+    // The facing legend is filled for the torus's front/back colouring.
+    QVERIFY(window_->colorLegend()->text().contains(QStringLiteral("front")));
 }
 
 int main(int argc, char** argv) {

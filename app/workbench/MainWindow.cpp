@@ -43,6 +43,7 @@
 #include <QStatusBar>
 #include <QTimer>
 #include <QToolBar>
+#include <QVBoxLayout>
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
 
@@ -184,6 +185,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     createLayout();
     createActions();
     createSelection();
+    createDisplayDock();
     connect(&watcher_, &QFutureWatcher<JobResult>::finished, this, &MainWindow::onJobFinished);
     connect(methodPanel_, &MethodPanel::methodChanged, this, [this] { rebuildRunner(-1); });
     // New parameters: run again up to the phase reached (or being run to).
@@ -338,6 +340,7 @@ void MainWindow::createActions() {
     cancelAction_->setToolTip(tr("Stop the running phase; the last finished one stays (Esc)"));
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
+    viewMenu_ = view;
     cameraFromViewAction_ = view->addAction(tr("Set analysis &camera from this view"), this,
                                             &MainWindow::setAnalysisCameraFromView);
     cameraFromViewAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_K));
@@ -398,11 +401,11 @@ void MainWindow::createActions() {
     colorLabel->setBuddy(colorSelector_);
     display->addWidget(colorLabel);
     display->addWidget(colorSelector_);
-    colorLegend_ = new QLabel(display);
+    // Shown in the right dock (createDisplayDock).
+    colorLegend_ = new QLabel;
     colorLegend_->setObjectName(QStringLiteral("colorLegend"));
     colorLegend_->setTextFormat(Qt::RichText);
     colorLegend_->setContentsMargins(8, 0, 8, 0);
-    display->addWidget(colorLegend_);
     createCompareSelector(display);
 
     createOverlayActions(view);
@@ -472,13 +475,45 @@ void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
         overlayBar_->addAction(action);
         overlayMenu->addAction(action);
     }
-    viewGraphLegend_ = new QLabel(overlayBar_);
+    viewGraphLegend_ = new QLabel; // shown in the right dock (createDisplayDock)
     viewGraphLegend_->setObjectName(QStringLiteral("viewGraphLegend"));
     viewGraphLegend_->setTextFormat(Qt::RichText);
     viewGraphLegend_->setContentsMargins(8, 0, 8, 0);
     viewGraphLegend_->setToolTip(tr("3D view: chain colours by QI and node dot colours by type "
                                     "(the 2D view draws its own legend)"));
-    viewGraphLegendAction_ = overlayBar_->addWidget(viewGraphLegend_);
+}
+
+void MainWindow::createDisplayDock() {
+    // Issue 6 layout: the overlay toggles and the legends in the right dock
+    // under the inspector (the tool bars keep the toggles for quick access;
+    // the actions are shared, so both stay in step).
+    auto* dock = new QDockWidget(tr("Overlays and legends"), this);
+    dock->setObjectName(QStringLiteral("displayDock"));
+    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
+                      QDockWidget::DockWidgetClosable);
+    auto* content = new QWidget(dock);
+    auto* layout = new QVBoxLayout(content);
+    auto* toggles = new QToolBar(content);
+    toggles->setObjectName(QStringLiteral("displayDockToggles"));
+    toggles->setOrientation(Qt::Vertical);
+    toggles->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
+    for (QAction* action : overlayActions_)
+        toggles->addAction(action);
+    for (QAction* action : viewGraphActions_)
+        toggles->addAction(action);
+    toggles->addAction(cageAction_);
+    layout->addWidget(toggles);
+    for (QLabel* legend : {colorLegend_, viewGraphLegend_}) {
+        legend->setParent(content);
+        legend->setWordWrap(true);
+        layout->addWidget(legend);
+    }
+    layout->addStretch(1);
+    dock->setWidget(content);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    if (auto* inspector = findChild<QDockWidget*>(QStringLiteral("inspectorDock")))
+        splitDockWidget(inspector, dock, Qt::Vertical);
+    viewMenu_->addAction(dock->toggleViewAction());
 }
 
 void MainWindow::updateViewGraphLegend() {
@@ -509,7 +544,7 @@ void MainWindow::updateViewGraphLegend() {
                                     tr(nodeStyle(static_cast<ViewNodeType>(t)).label));
         }
     }
-    viewGraphLegend_->setText(entries.join(QStringLiteral("&nbsp;&nbsp;")));
+    viewGraphLegend_->setText(entries.join(QStringLiteral("<br>")));
 }
 
 void MainWindow::updateOverlayActions() {
@@ -523,7 +558,7 @@ void MainWindow::updateOverlayActions() {
     for (QAction* action : viewGraphActions_)
         action->setVisible(graph);
     viewGraphSeparator_->setVisible(graph);
-    viewGraphLegendAction_->setVisible(graph);
+    viewGraphLegend_->setVisible(graph);
     any |= graph;
     updateViewGraphLegend();
     // The bar only takes room when it has something to offer.
@@ -541,7 +576,7 @@ void MainWindow::updateColorLegend() {
         entries << swatch(sceneColors::kFrontFace, tr("front"))
                 << swatch(sceneColors::kBackFace, tr("back"));
     }
-    colorLegend_->setText(entries.join(QStringLiteral("&nbsp;&nbsp;")));
+    colorLegend_->setText(entries.join(QStringLiteral("<br>")));
     // Visible chains coloured by QI follow the curves' colour (black over a
     // scalar field).
     updateViewGraphLegend();

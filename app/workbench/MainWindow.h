@@ -215,6 +215,8 @@ private:
     void updateColorLegend();
     void createViewGraphActions(QMenu* overlayMenu);
     void updateViewGraphLegend();
+    // The right dock's overlay toggles and legends (below the inspector).
+    void createDisplayDock();
     // Method comparison: the difference of the current snapshot's drawing
     // and the other method's, shown in the 2D view.
     void createCompareSelector(QToolBar* toolBar);
@@ -239,7 +241,7 @@ private:
     std::array<QAction*, kViewGraphToggleCount> viewGraphActions_{};
     QAction* viewGraphSeparator_ = nullptr;
     QLabel* viewGraphLegend_ = nullptr;
-    QAction* viewGraphLegendAction_ = nullptr;
+    QMenu* viewMenu_ = nullptr;
     bool updatingColorSelector_ = false;
 
     QAction* openAction_ = nullptr;
