@@ -409,20 +409,15 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     }
     const long long radialEdges = std::count(radialEdge.begin(), radialEdge.end(), 1);
     Analysis a = analyseMesh(m, &mesh);
-    auto kept = std::make_shared<Analysis>();
-    kept->folded = a.folded;
-    kept->noChart = a.noChart;
-    kept->inconsistent = a.inconsistent;
-    kept->undefinedVbo = a.undefinedVbo;
-    kept->fbEdges = a.fbEdges;
-    kept->degenerate = a.degenerate;
-    kept->contourVertices = a.contourVertices;
-    kept->cusps = a.cusps;
-    kept->foldedFaces = a.foldedFaces;
-    kept->firstFb = a.firstFb;
-    kept->firstUndefined = a.firstUndefined;
-    kept->firstDegenerate = a.firstDegenerate;
-    kept->firstFolded = a.firstFolded;
+    // The per-face facing, VBO and consistency go into the fields; the rest
+    // of the analysis is kept for the next phase's reload.
+    std::vector<int> facing = std::move(a.facing);
+    std::vector<int> vbo = std::move(a.vbo);
+    std::vector<int> consistent = std::move(a.consistent);
+    a.facing.clear();
+    a.vbo.clear();
+    a.consistent.clear();
+    auto kept = std::make_shared<Analysis>(a);
     RadialClassification radial = classifyRadialFaces(m);
     const long long radialFaces = std::count(radial.radial.begin(), radial.radial.end(), 1);
     const long long standardFaces = std::count(radial.standard.begin(), radial.standard.end(), 1);
@@ -448,11 +443,11 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     s.setField(fields::kChangedByPhase,
                {L::Face, std::move(fphase), "phase that created or last changed the face"});
     s.setField(fields::kFacing,
-               {L::Face, std::move(a.facing), "+1 front, -1 back, 0 edge-on (exact)"});
-    s.setField(fields::kVbo, {L::Face, std::move(a.vbo),
+               {L::Face, std::move(facing), "+1 front, -1 back, 0 edge-on (exact)"});
+    s.setField(fields::kVbo, {L::Face, std::move(vbo),
                               "VBO (Definition 1): +1 F, -1 B, 0 "
                               "undefined"});
-    s.setField(fields::kConsistent, {L::Face, std::move(a.consistent),
+    s.setField(fields::kConsistent, {L::Face, std::move(consistent),
                                      "1 contour-consistent (Definition 2), 0 inconsistent"});
     s.setField(fields::kFolded,
                {L::Face, std::move(a.folded), "1 folded in parameter space (against the domain)"});
