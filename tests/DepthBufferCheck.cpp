@@ -91,11 +91,24 @@ DepthImage renderDepth(const TriangleMesh& mesh, const Camera& camera, int scale
     vtkNew<vtkRenderer> renderer;
     renderer->AddActor(actor);
     renderer->SetBackground(0.0, 0.0, 0.0);
-    vtkNew<vtkRenderWindow> window;
-    window->SetOffScreenRendering(1);
-    window->SetMultiSamples(0); // one depth sample per pixel, read back as is
+    // One offscreen window for every render: each window holds its own X
+    // connection, and opening one per view can run the X server (shared
+    // with the other suites under ctest -j2) out of connections.
+    static const vtkSmartPointer<vtkRenderWindow> shared = [] {
+        auto w = vtkSmartPointer<vtkRenderWindow>::New();
+        w->SetOffScreenRendering(1);
+        w->SetMultiSamples(0); // one depth sample per pixel, read back as is
+        return w;
+    }();
+    vtkRenderWindow* window = shared;
     window->SetSize(image.width, image.height);
     window->AddRenderer(renderer);
+    // Detached again however this function leaves.
+    struct Detach {
+        vtkRenderWindow* window;
+        vtkRenderer* renderer;
+        ~Detach() { window->RemoveRenderer(renderer); }
+    } detach{window, renderer};
 
     vtkCamera* vtkCam = renderer->GetActiveCamera();
     applyCameraToVtk(camera, vtkCam);
