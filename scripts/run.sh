@@ -12,7 +12,13 @@ fi
 out=out/run-$(date +%Y%m%d-%H%M%S)
 mkdir -p "$out"
 echo "run: no display (DISPLAY is not set): running the batch CLI on $sample instead"
-build/app/batch/contour-batch --mesh "$sample" --method interpolated --surface auto \
-  --svg "$out/spot_control_mesh.svg" --json "$out/spot_control_mesh.json" "$@"
+# Under a virtual X server (setup.sh installs xvfb) the diagnostic snapshot
+# also gets the workbench's two pictures.
+xvfb=()
+if command -v xvfb-run >/dev/null; then xvfb=(xvfb-run -a); fi
+"${xvfb[@]}" build/app/batch/contour-batch --mesh "$sample" --method interpolated --surface auto \
+  --svg "$out/spot_control_mesh.svg" --json "$out/spot_control_mesh.json" \
+  --snapshot-dir "$out/snapshot" "$@"
 echo "run: SVG written to $PWD/$out/spot_control_mesh.svg"
 echo "run: JSON report written to $PWD/$out/spot_control_mesh.json"
+echo "run: diagnostic snapshot (report, SVG, PLY, session, PNGs) written to $PWD/$out/snapshot/"

@@ -12,7 +12,9 @@
 
 #include <QDir>
 #include <QFile>
+#include <QImage>
 #include <QProcess>
+#include <QSet>
 #include <QTemporaryDir>
 #include <QXmlStreamReader>
 #include <QtTest>
@@ -198,8 +200,16 @@ private:
         return d.path();
     }
 
-    RunResult run(const QStringList& args, int timeoutMs = 120000) {
+    // `withoutDisplay` runs the program with DISPLAY and WAYLAND_DISPLAY
+    // removed from its environment.
+    RunResult run(const QStringList& args, int timeoutMs = 120000, bool withoutDisplay = false) {
         QProcess process;
+        if (withoutDisplay) {
+            QProcessEnvironment environment = QProcessEnvironment::systemEnvironment();
+            environment.remove("DISPLAY");
+            environment.remove("WAYLAND_DISPLAY");
+            process.setProcessEnvironment(environment);
+        }
         process.start(kProgram, args);
         RunResult r;
         if (!process.waitForStarted()) {
@@ -791,8 +801,10 @@ private slots:
     }
 
     // Batch parity with the workbench's diagnostic snapshot (issue 6 item
-    // 7): --snapshot-dir writes the report, SVG, PLY and session of the run
-    // (no PNG); they agree with each other and with --json.
+    // 7): --snapshot-dir writes the report, SVG, PLY and session of the run,
+    // and (GUI build, with a display: the suites run under xvfb-run) the two
+    // PNGs drawn by the workbench's views; they agree with each other and
+    // with --json.
     void snapshotDir() {
         const QString out = freshOutputDir("snapshot");
         const QString spot = CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj";
@@ -802,9 +814,34 @@ private slots:
         QCOMPARE(filesIn(out), QStringList({"r.json"}));
         QStringList files = filesIn(out + "/snap");
         files.sort();
-        QCOMPARE(files,
-                 QStringList({"mesh.ply", "report.json", "session.cwsession", "view-2d.svg"}));
+        QStringList expected({"mesh.ply", "report.json", "session.cwsession", "view-2d.svg"});
+#ifdef CONTOUR_BATCH_HAS_WIDGETS
+        const bool pictures = qEnvironmentVariableIsSet("DISPLAY");
+#else
+        const bool pictures = false;
+#endif
+        if (pictures) {
+            expected << "view-2d.png"
+                     << "view-3d.png";
+            expected.sort();
+            // Decoded at the camera's viewport size; not blank: the 3D view
+            // shows the mesh's front colour, the 2D view black curves.
+            for (const QString& name : {QString("view-3d.png"), QString("view-2d.png")}) {
+                const QImage image(out + "/snap/" + name);
+                QVERIFY2(!image.isNull(), qPrintable(name));
+                QCOMPARE(image.size(), QSize(800, 600));
+                QSet<QRgb> colours;
+                for (int y = 0; y < image.height(); y += 4)
+                    for (int x = 0; x < image.width(); x += 4)
+                        colours.insert(image.pixel(x, y));
+                QVERIFY2(colours.size() > 20, qPrintable(name));
+            }
+        } else {
+            QVERIFY2(r.out.contains("view-3d.png and view-2d.png not written"), qPrintable(r.out));
+        }
+        QCOMPARE(files, expected);
         const nlohmann::json report = readJson(out + "/snap/report.json");
+        QCOMPARE(static_cast<qsizetype>(report["snapshot"]["files"].size()), expected.size());
         const nlohmann::json& view = report["views"][0];
         QCOMPARE(view["camera"], readJson(out + "/r.json")["views"][0]["camera"]);
         QCOMPARE(report["method"], readJson(out + "/r.json")["method"]);
@@ -837,7 +874,15 @@ private slots:
             run({"--mesh", sphere_, "--views26", "--snapshot-dir", views + "/snap"});
         QVERIFY2(r26.exitCode == 0, qPrintable(r26.err));
         QCOMPARE(QDir(views + "/snap").entryList(QDir::Dirs | QDir::NoDotAndDotDot).size(), 26);
-        QCOMPARE(filesIn(views + "/snap/view25").size(), 4);
+        QCOMPARE(filesIn(views + "/snap/view25").size(), pictures ? 6 : 4);
+
+        // Without a display the pictures are left out, and the run says so.
+        const QString headless = freshOutputDir("snapshot-headless");
+        const RunResult rh =
+            run({"--mesh", sphere_, "--snapshot-dir", headless + "/snap"}, 120000, true);
+        QVERIFY2(rh.exitCode == 0, qPrintable(rh.err));
+        QVERIFY2(rh.out.contains("view-3d.png and view-2d.png not written"), qPrintable(rh.out));
+        QCOMPARE(filesIn(headless + "/snap").size(), 4);
     }
 
     // --session runs what a session holds (here the snapshot's own session):

@@ -3,7 +3,8 @@
 // method on a mesh from one camera, up to the phase reached), written
 // together into one folder, all or nothing. The workbench's File › Export
 // diagnostic snapshot adds the two PNG grabs of its views to the files made
-// here; contour-batch --snapshot-dir writes the same files without the PNGs.
+// here; contour-batch --snapshot-dir adds the same two pictures drawn by the
+// same views off screen (app/batch/SnapshotImages.h), when it has a display.
 //
 // Files (fixed names, so scripts find them):
 //   report.json       JsonReport with this one view: mesh, method, parameters,
@@ -17,7 +18,7 @@
 //   mesh.ply          the working mesh with every int and double vertex and
 //                     face field as a property (SnapshotPly.h)
 //   session.cwsession the session that reopens this state (SessionFile.h)
-//   view-3d.png, view-2d.png   (workbench only) grabs of its two views
+//   view-3d.png, view-2d.png   the 3D and 2D views (made by the caller)
 #include "camera/Camera.h"
 #include "export/SessionFile.h"
 #include "pipeline/Method.h"

@@ -1,5 +1,6 @@
 #include "BatchRun.h"
 
+#include "SnapshotImages.h"
 #include "Summary.h"
 #include "export/DiagnosticSnapshot.h"
 #include "export/JsonReport.h"
@@ -218,6 +219,15 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
     long long conflicts = 0;
     std::string firstConflict;
     const bool several = cameras.size() > 1;
+    // The snapshot's two PNGs, drawn by the workbench's views when this build
+    // and this machine can (SnapshotImages.h); said once when they cannot.
+    std::unique_ptr<SnapshotImages> images;
+    if (!o.snapshotDir.empty()) {
+        images = std::make_unique<SnapshotImages>();
+        if (!images->available())
+            out << "--snapshot-dir: " << snapshotFiles::kPng3d << " and " << snapshotFiles::kPng2d
+                << " not written: " << images->unavailableReason() << "\n";
+    }
     for (size_t v = 0; v < cameras.size(); ++v) {
         const Camera& camera = cameras[v];
         const int view = static_cast<int>(v);
@@ -299,7 +309,16 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
             snapshot.folder =
                 several ? (std::filesystem::path(o.snapshotDir) / ("view" + number)).string()
                         : o.snapshotDir;
-            snapshot.files = diagnosticSnapshotFiles(run, &notes);
+            if (images->available()) {
+                try {
+                    snapshot.files = images->render(runner->current(), camera);
+                } catch (const std::exception& e) {
+                    throw BatchFailure(snapshot.folder + "/" + e.what());
+                }
+                run.otherFiles = {snapshotFiles::kPng3d, snapshotFiles::kPng2d};
+            }
+            for (SnapshotFile& file : diagnosticSnapshotFiles(run, &notes))
+                snapshot.files.push_back(std::move(file));
             if (v == 0)
                 for (const std::string& note : notes)
                     out << "  --snapshot-dir: " << note << "\n";

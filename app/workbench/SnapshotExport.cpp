@@ -2,33 +2,17 @@
 
 #include "ImageView2D.h"
 #include "MainWindow.h"
+#include "PngBytes.h"
 #include "SceneView3D.h"
 #include "SessionController.h"
 #include "export/DiagnosticSnapshot.h"
 
-#include <QBuffer>
 #include <QDir>
 #include <QFileInfo>
 #include <QImage>
 #include <string>
 
 namespace contour {
-
-namespace {
-
-// The image as PNG bytes; empty when it cannot be encoded.
-std::string pngBytes(const QImage& image) {
-    if (image.isNull())
-        return {};
-    QByteArray bytes;
-    QBuffer buffer(&bytes);
-    buffer.open(QIODevice::WriteOnly);
-    if (!image.save(&buffer, "PNG"))
-        return {};
-    return bytes.toStdString();
-}
-
-} // namespace
 
 SnapshotExportResult exportDiagnosticSnapshot(MainWindow& window, const QString& folder) {
     SnapshotExportResult result;
