@@ -12,6 +12,7 @@
 // behind (a file kept aside is put back). Needs a display: run under
 // `xvfb-run -a` (Mesa llvmpipe).
 #include "AboutDialog.h"
+#include "ImageView2D.h"
 #include "MainWindow.h"
 #include "MethodComparison.h"
 #include "MethodPanel.h"
@@ -315,7 +316,13 @@ void TestSessionExport::exportSnapshot() {
 
 void TestSessionExport::sessionRoundTrip() {
     const QString path = dir_.filePath(QStringLiteral("spot.cwsession"));
-    QVERIFY2(window_->saveSession(path), qPrintable(window_->lastError()));
+    // The control cage and the view layout are part of the display too.
+    window_->controlCageAction()->setChecked(true);
+    window_->setViewLayout(MainWindow::ViewLayout::SceneOnly);
+    const bool saved = window_->saveSession(path);
+    window_->setViewLayout(MainWindow::ViewLayout::Both);
+    window_->controlCageAction()->setChecked(false);
+    QVERIFY2(saved, qPrintable(window_->lastError()));
     QVERIFY(
         window_->sessionController()->recentFiles().contains(QFileInfo(path).absoluteFilePath()));
 
@@ -354,6 +361,11 @@ void TestSessionExport::sessionRoundTrip() {
         QCOMPARE(
             other.viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i))->isChecked(),
             window_->viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i))->isChecked());
+    QVERIFY(other.controlCageAction()->isChecked());
+    QVERIFY(other.sceneView()->showsControlCage());
+    QVERIFY(other.sceneView()->controlCageEdgesShown() > 0);
+    QCOMPARE(other.viewLayout(), MainWindow::ViewLayout::SceneOnly);
+    QVERIFY(other.imageView()->isHidden());
     QCOMPARE(other.colorField(), QString::fromLatin1(fields::kVbo));
     QCOMPARE(other.methodComparison()->otherMethod(), QStringLiteral("mesh"));
     QCOMPARE(other.sceneView()->isOverlayEnabled(SceneOverlay::RadialEdges),

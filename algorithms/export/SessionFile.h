@@ -17,8 +17,9 @@
 //   "phase_reached": phases completed (0 = the input),
 //   "phase_name": name of the last completed phase ("input" for 0), for
 //                 readers; opening checks it against the method,
-//   "display": {key: value} strings the GUI fills (colour field, overlay and
-//              view-graph toggles); other readers ignore it
+//   "display": {key: value} strings the GUI fills (colour field, overlay,
+//              view-graph and control-cage toggles, view layout, compared
+//              method); other readers ignore it
 // }
 #include "camera/Camera.h"
 #include "pipeline/Method.h"

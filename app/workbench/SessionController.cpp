@@ -37,6 +37,11 @@ const std::array<const char*, MainWindow::kViewGraphToggleCount> kViewGraphKeys{
     "view-graph.hidden-curves", "view-graph.colour-by-qi", "view-graph.nodes",
     "view-graph.simplified-curves"};
 
+const char* const kCageKey = "overlay.control-cage";
+// Which views are shown (MainWindow::ViewLayout, in its order).
+const char* const kLayoutKey = "layout";
+const std::array<const char*, 3> kLayoutNames{"both", "3d-only", "2d-only"};
+
 const char* boolText(bool on) {
     return on ? "true" : "false";
 }
@@ -116,6 +121,9 @@ std::optional<Session> SessionController::capture(QString* error) const {
         if (const QAction* a =
                 window_->viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i)))
             s.display[kViewGraphKeys[static_cast<size_t>(i)]] = boolText(a->isChecked());
+    if (const QAction* a = window_->controlCageAction())
+        s.display[kCageKey] = boolText(a->isChecked());
+    s.display[kLayoutKey] = kLayoutNames.at(static_cast<size_t>(window_->viewLayout()));
     return s;
 }
 
@@ -199,6 +207,13 @@ void SessionController::applyDisplay(const Session& session) {
         if (const std::optional<bool> on = flag(kViewGraphKeys[static_cast<size_t>(i)]))
             if (QAction* a = window_->viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i)))
                 a->setChecked(*on);
+    if (const std::optional<bool> on = flag(kCageKey))
+        if (QAction* a = window_->controlCageAction())
+            a->setChecked(*on);
+    if (const auto it = session.display.find(kLayoutKey); it != session.display.end())
+        for (size_t i = 0; i < kLayoutNames.size(); ++i)
+            if (it->second == kLayoutNames[i])
+                window_->setViewLayout(static_cast<MainWindow::ViewLayout>(i));
     if (const auto it = session.display.find(kCompareKey); it != session.display.end())
         window_->setComparisonMethod(QString::fromStdString(it->second));
     if (const auto it = session.display.find(kColourKey); it != session.display.end())
