@@ -106,17 +106,8 @@ double roundPixel(double x) {
 
 nlohmann::json viewGraphJson(const ViewGraph& graph) {
     nlohmann::json chains = nlohmann::json::array();
-    long long visible = 0, hidden = 0, simplified = 0, ambiguous = 0, conflicting = 0;
-    double simplifiedLength = 0.0;
     for (size_t c = 0; c < graph.chains.size(); ++c) {
         const ViewChain& chain = graph.chains[c];
-        visible += chain.visible();
-        hidden += !chain.visible() && !chain.simplifiedAway;
-        simplified += chain.simplifiedAway;
-        ambiguous += chain.ambiguous;
-        conflicting += chain.conflict;
-        if (chain.simplifiedAway)
-            simplifiedLength += chain.lengthPixels;
         long long tested = 0, ambiguousSegments = 0;
         for (int q : chain.segmentRayQi)
             tested += q >= 0;
@@ -171,19 +162,21 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
                              {"propagated_qi", c.propagatedQi},
                              {"ray_qi", c.rayQi},
                              {"reason", c.reason}});
-    nlohmann::json totals = {{"chains", graph.chains.size()},
-                             {"visible_chains", visible},
-                             {"hidden_chains", hidden},
-                             {"simplified_chains", simplified},
-                             {"ambiguous_chains", ambiguous},
-                             {"conflict_chains", conflicting},
-                             {"nodes", graph.nodes.size()},
-                             {"nodes_by_type", std::move(byType)},
-                             {"conflicts", graph.conflicts.size()},
-                             {"ray_tests", graph.rayTests},
-                             {"visible_length_px", graph.visibleLengthPixels()},
-                             {"hidden_length_px", graph.hiddenLengthPixels() - simplifiedLength},
-                             {"simplified_length_px", simplifiedLength}};
+    const ViewChainTally tally = graph.chainTally();
+    nlohmann::json totals = {
+        {"chains", graph.chains.size()},
+        {"visible_chains", tally.visible},
+        {"hidden_chains", tally.hidden},
+        {"simplified_chains", tally.simplified},
+        {"ambiguous_chains", tally.ambiguous},
+        {"conflict_chains", tally.conflicting},
+        {"nodes", graph.nodes.size()},
+        {"nodes_by_type", std::move(byType)},
+        {"conflicts", graph.conflicts.size()},
+        {"ray_tests", graph.rayTests},
+        {"visible_length_px", graph.visibleLengthPixels()},
+        {"hidden_length_px", graph.hiddenLengthPixels() - tally.simplifiedLengthPixels},
+        {"simplified_length_px", tally.simplifiedLengthPixels}};
     return {{"totals", std::move(totals)},
             {"chains", std::move(chains)},
             {"nodes", std::move(nodes)},

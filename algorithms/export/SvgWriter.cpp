@@ -314,13 +314,9 @@ std::string svgDocument(const Snapshot& snapshot, const Camera& camera, const Sv
            " curves";
     if (snapshot.viewGraph) {
         const ViewGraph& graph = *snapshot.viewGraph;
-        long long visible = 0, simplified = 0;
-        for (const ViewChain& chain : graph.chains) {
-            visible += chain.visible();
-            simplified += chain.simplifiedAway;
-        }
+        const ViewChainTally tally = graph.chainTally();
         out += "; view graph: " + std::to_string(graph.chains.size()) + " chains (" +
-               std::to_string(visible) + " visible, " + std::to_string(simplified) +
+               std::to_string(tally.visible) + " visible, " + std::to_string(tally.simplified) +
                " simplified away), " + std::to_string(graph.nodes.size()) + " nodes, " +
                std::to_string(graph.conflicts.size()) + " conflicts";
     }

@@ -84,6 +84,20 @@ ViewNodeClass ViewGraph::nodeClass(Index node) const {
     return ViewNodeClass::Junction;
 }
 
+ViewChainTally ViewGraph::chainTally() const {
+    ViewChainTally t;
+    for (const ViewChain& chain : chains) {
+        t.visible += chain.visible();
+        t.hidden += !chain.visible() && !chain.simplifiedAway;
+        t.simplified += chain.simplifiedAway;
+        t.ambiguous += chain.ambiguous;
+        t.conflicting += chain.conflict;
+        if (chain.simplifiedAway)
+            t.simplifiedLengthPixels += chain.lengthPixels;
+    }
+    return t;
+}
+
 double ViewGraph::visibleLengthPixels() const {
     double length = 0.0;
     for (const ViewChain& c : chains)

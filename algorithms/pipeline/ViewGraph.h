@@ -141,6 +141,18 @@ struct VisibilityConflict {
     std::string reason;
 };
 
+// The chains counted as reports give them: visible (drawn solid), hidden
+// (drawn dashed; not simplified away), simplified away, and across those,
+// ambiguous and conflicting ones.
+struct ViewChainTally {
+    long long visible = 0;
+    long long hidden = 0;
+    long long simplified = 0;
+    long long ambiguous = 0;
+    long long conflicting = 0;
+    double simplifiedLengthPixels = 0.0;
+};
+
 struct ViewGraph {
     std::vector<ViewChain> chains;
     std::vector<ViewNode> nodes;
@@ -149,6 +161,7 @@ struct ViewGraph {
 
     // The node's class counting visible chains only (Bénard 2014 §9).
     ViewNodeClass nodeClass(Index node) const;
+    ViewChainTally chainTally() const;
     double visibleLengthPixels() const;
     double hiddenLengthPixels() const;
 };

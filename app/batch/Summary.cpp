@@ -150,13 +150,7 @@ void printViewTotals(std::ostream& out, const Snapshot& last, const Camera& came
 }
 
 void printViewGraphTotals(std::ostream& out, const ViewGraph& graph) {
-    long long visible = 0, hidden = 0, simplified = 0, ambiguous = 0;
-    for (const ViewChain& chain : graph.chains) {
-        visible += chain.visible();
-        hidden += !chain.visible() && !chain.simplifiedAway;
-        simplified += chain.simplifiedAway;
-        ambiguous += chain.ambiguous;
-    }
+    const ViewChainTally tally = graph.chainTally();
     long long tJunctions = 0, curtainFolds = 0, boundaryFolds = 0, other = 0;
     for (const ViewNode& node : graph.nodes) {
         if (node.type == ViewNodeType::ImageIntersection)
@@ -171,11 +165,11 @@ void printViewGraphTotals(std::ostream& out, const ViewGraph& graph) {
     std::ostringstream len;
     len << std::fixed << std::setprecision(1) << graph.visibleLengthPixels();
     out << "graph   " << plural(static_cast<long long>(graph.chains.size()), "chain") << ": "
-        << visible << " visible, " << hidden << " hidden";
-    if (simplified > 0)
-        out << ", " << simplified << " simplified away";
-    if (ambiguous > 0)
-        out << ", " << ambiguous << " ambiguous";
+        << tally.visible << " visible, " << tally.hidden << " hidden";
+    if (tally.simplified > 0)
+        out << ", " << tally.simplified << " simplified away";
+    if (tally.ambiguous > 0)
+        out << ", " << tally.ambiguous << " ambiguous";
     out << "; " << plural(tJunctions, "T-junction") << ", " << plural(curtainFolds, "curtain fold");
     if (boundaryFolds > 0)
         out << ", " << plural(boundaryFolds, "boundary curtain fold");
