@@ -227,11 +227,13 @@ private slots:
     void clickInSceneView();
     void idBoxSelectsInBothViews_data();
     void idBoxSelectsInBothViews();
+    void nodeClickInImageView();
     void chainClickInImageView();
     void nextInconsistentFace();
     void selectionAcrossSteps();
 
 private:
+    Snapshot analysisViewWithoutSelection();
     // The inspector's rows against the snapshot's fields for `sel`.
     void checkInspector(const Snapshot& s, const Selection& sel);
 
@@ -444,18 +446,22 @@ void TestInspector::clickInSceneView() {
           static_cast<int>(f), qPrintable(expected.describe()), limeBefore, limeAfter);
     QCOMPARE(limeBefore, 0LL);
     QVERIFY2(limeAfter >= 8, qPrintable(QString::number(limeAfter)));
-    if (where != 0)
-        return;
-    // The same face through a click in the 2D view at its centroid (a
-    // chain wins when one is drawn within the pick distance there).
+    // The same element through a click in the 2D view at the same point of
+    // the face (a chain wins when one is drawn within the pick distance
+    // there).
     ImageView2D* image = window_->imageView();
     const Camera analysis = *window_->analysisCamera();
-    const Vec3 centroid =
-        (s.mesh->position(t[0]) + s.mesh->position(t[1]) + s.mesh->position(t[2])) / 3.0;
-    const QPointF inImage = image->toWidget(analysis.project(centroid).pixel);
+    std::array<Vec2, 3> a;
+    for (size_t i = 0; i < 3; ++i)
+        a[i] = analysis.project(s.mesh->position(t[i])).pixel;
+    const Vec2 target2d = where == 0   ? Vec2((a[0] + a[1] + a[2]) / 3.0)
+                          : where == 1 ? a[0]
+                                       : Vec2(0.5 * (a[0] + a[1]));
+    const QPointF inImage = image->toWidget(target2d);
     window_->selectionController()->clear();
     QTest::mouseClick(image, Qt::LeftButton, Qt::NoModifier, inImage.toPoint());
     const Selection picked2d = window_->selectionController()->selection();
+    qInfo("2D click at the same point: %s", qPrintable(picked2d.describe()));
     QVERIFY2(picked2d == expected || picked2d.kind == SelectionKind::Chain,
              qPrintable(picked2d.describe()));
     QCOMPARE(scene->highlight(), picked2d);
@@ -538,10 +544,58 @@ void TestInspector::idBoxSelectsInBothViews() {
              qPrintable(window_->statusBar()->currentMessage()));
 }
 
-void TestInspector::chainClickInImageView() {
+// Back to the analysis camera's view, nothing selected; the snapshot shown.
+Snapshot TestInspector::analysisViewWithoutSelection() {
     window_->resetViewToAnalysisCamera();
     window_->selectionController()->clear();
-    const Snapshot s = window_->currentSnapshot();
+    return window_->currentSnapshot();
+}
+
+// A node glyph that stands on a mesh vertex (a cusp's curtain fold) picks
+// that vertex in both views.
+void TestInspector::nodeClickInImageView() {
+    const Snapshot s = analysisViewWithoutSelection();
+    QVERIFY2(s.viewGraph, "the consistent method's last snapshot has no view graph");
+    const ViewGraph& graph = *s.viewGraph;
+    ImageView2D* image = window_->imageView();
+    QVERIFY(image->showsNodes());
+    const Camera camera = *window_->analysisCamera();
+    std::vector<Vec2> at(graph.nodes.size());
+    for (size_t n = 0; n < graph.nodes.size(); ++n) {
+        const QPointF w = image->toWidget(camera.project(graph.nodes[n].position).pixel);
+        at[n] = Vec2(w.x(), w.y());
+    }
+    // A node on a vertex, on a visible chain, with no other node near it.
+    Index chosen = kInvalidIndex;
+    for (size_t n = 0; n < graph.nodes.size() && chosen == kInvalidIndex; ++n) {
+        const ViewNode& node = graph.nodes[n];
+        if (node.meshVertex == kInvalidIndex)
+            continue;
+        bool onVisible = false;
+        for (const Index c : node.chains)
+            onVisible = onVisible || graph.chains[static_cast<size_t>(c)].visible();
+        double other = std::numeric_limits<double>::infinity();
+        for (size_t m = 0; m < graph.nodes.size(); ++m)
+            if (m != n)
+                other = std::min(other, (at[m] - at[n]).norm());
+        if (onVisible && other > 3.0 * ImageView2D::kPickPixels)
+            chosen = static_cast<Index>(n);
+    }
+    QVERIFY2(chosen != kInvalidIndex, "no isolated node on a mesh vertex");
+    const ViewNode& node = graph.nodes[static_cast<size_t>(chosen)];
+    // Off the glyph's centre by a pixel or two, as a hand clicks.
+    const QPoint click(static_cast<int>(std::lround(at[static_cast<size_t>(chosen)].x() + 2.0)),
+                       static_cast<int>(std::lround(at[static_cast<size_t>(chosen)].y() - 1.0)));
+    QTest::mouseClick(image, Qt::LeftButton, Qt::NoModifier, click);
+    const Selection expected = Selection::vertex(node.meshVertex);
+    QCOMPARE(window_->selectionController()->selection(), expected);
+    QCOMPARE(window_->sceneView()->highlight(), expected);
+    QCOMPARE(image->highlight(), expected);
+    checkInspector(s, expected);
+}
+
+void TestInspector::chainClickInImageView() {
+    const Snapshot s = analysisViewWithoutSelection();
     QVERIFY2(s.viewGraph, "the consistent method's last snapshot has no view graph");
     const ViewGraph& graph = *s.viewGraph;
     ImageView2D* image = window_->imageView();

@@ -573,6 +573,23 @@ Selection ImageView2D::pick(const QPointF& position) const {
         return {};
     const double scale = frame.width() / camera_->viewport.width;
     const Vec2 click = toImage(position);
+    // Node glyphs are drawn over the chains: a drawn node that stands on a
+    // mesh vertex (a cusp, a boundary curtain fold) picks that vertex.
+    if (graph_) {
+        Index bestVertex = kInvalidIndex;
+        double bestDistance = kPickPixels / scale;
+        for (const Index n : nodes_) {
+            const ViewNode& node = graph_->nodes[static_cast<size_t>(n)];
+            // Where the glyph is drawn (rebuildViewGraph).
+            const double distance = (camera_->project(node.position).pixel - click).norm();
+            if (node.meshVertex != kInvalidIndex && distance <= bestDistance) {
+                bestDistance = distance;
+                bestVertex = node.meshVertex;
+            }
+        }
+        if (bestVertex != kInvalidIndex && mesh_ && bestVertex < mesh_->vertexCount())
+            return Selection::vertex(bestVertex);
+    }
     // Chains: the nearest drawn polyline, in widget pixels.
     Index bestChain = kInvalidIndex;
     double bestDistance = kPickPixels / scale;
@@ -630,7 +647,15 @@ Selection ImageView2D::pick(const QPointF& position) const {
             bestFace = f;
         }
     }
-    return bestFace == kInvalidIndex ? Selection() : Selection::face(bestFace);
+    if (bestFace == kInvalidIndex)
+        return {};
+    // Its vertex or edge when the click is near one, as in the 3D view.
+    const Triangle& t = mesh_->triangle(bestFace);
+    std::array<Vec2, 3> corners;
+    for (size_t i = 0; i < 3; ++i)
+        corners[i] = projected[static_cast<size_t>(t[i])].pixel;
+    return pickWithinFace(*mesh_, bestFace, corners, click, kPickVertexPixels / scale,
+                          kPickEdgePixels / scale);
 }
 
 void ImageView2D::setHighlight(const Selection& selection) {

@@ -83,11 +83,16 @@ public:
     QString comparisonCaption() const;
 
     // Linked selection (Selection.h). What a click at `position` (widget
-    // coordinates) hits: the nearest drawn view-graph chain within
-    // kPickPixels, else the front-most mesh face under the click (projected
-    // with the analysis camera), else nothing.
+    // coordinates) hits: the mesh vertex of the nearest drawn view-graph node
+    // within kPickPixels (nodes with a vertex: cusps, boundary folds), else
+    // the nearest drawn chain within kPickPixels, else the front-most mesh
+    // face under the click (projected with the analysis camera), narrowed to
+    // its vertex or edge near the click as in the 3D view (pickWithinFace),
+    // else nothing.
     Selection pick(const QPointF& position) const;
     static constexpr double kPickPixels = 5.0;
+    static constexpr double kPickVertexPixels = 6.0; // widget pixels
+    static constexpr double kPickEdgePixels = 4.0;
     // A press and release further apart than this is not a click.
     static constexpr double kClickSlopPixels = 4.0;
     // Draws the selected element in sceneColors::kSelection over the

@@ -4,6 +4,7 @@
 #include "pipeline/Snapshot.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace contour {
 
@@ -27,6 +28,38 @@ QString Selection::describe() const {
     if (isEmpty())
         return QStringLiteral("nothing");
     return QStringLiteral("%1 %2").arg(QString::fromLatin1(toString(kind))).arg(id);
+}
+
+Selection pickWithinFace(const TriangleMesh& mesh, Index face, const std::array<Vec2, 3>& corners,
+                         const Vec2& click, double vertexRadius, double edgeRadius) {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < 3; ++i)
+        shortest = std::min(shortest, (corners[(i + 1) % 3] - corners[i]).norm());
+    vertexRadius = std::min(vertexRadius, 0.3 * shortest);
+    edgeRadius = std::min(edgeRadius, 0.15 * shortest);
+    size_t nearestCorner = 0;
+    for (size_t i = 1; i < 3; ++i)
+        if ((corners[i] - click).norm() < (corners[nearestCorner] - click).norm())
+            nearestCorner = i;
+    if ((corners[nearestCorner] - click).norm() <= vertexRadius)
+        return Selection::vertex(mesh.triangle(face)[nearestCorner]);
+    int nearestEdge = -1;
+    double edgeDistance = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < 3; ++i) {
+        const Vec2 a = corners[i];
+        const Vec2 ab = corners[(i + 1) % 3] - a;
+        const double s = ab.squaredNorm() > 0.0
+                             ? std::clamp((click - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
+                             : 0.0;
+        const double d = (a + s * ab - click).norm();
+        if (d < edgeDistance) {
+            edgeDistance = d;
+            nearestEdge = static_cast<int>(i);
+        }
+    }
+    if (nearestEdge >= 0 && edgeDistance <= edgeRadius)
+        return Selection::edge(mesh.edge(TriangleMesh::halfedge(face, nearestEdge)));
+    return Selection::face(face);
 }
 
 bool selectionExists(const Snapshot& snapshot, const Selection& selection) {

@@ -7,10 +7,12 @@
 // selection "survives" a step when the index still exists (phases that split,
 // flip or compact the mesh may give it another element: the inspector always
 // shows what the index names now).
+#include "mesh/TriangleMesh.h"
 #include "mesh/Types.h"
 
 #include <QObject>
 #include <QString>
+#include <array>
 #include <vector>
 
 namespace contour {
@@ -34,6 +36,14 @@ struct Selection {
     // "face 12", "chain 3", "nothing".
     QString describe() const;
 };
+
+// What a click on face `face` of `mesh` picks, given the face's corners and
+// the click in the same pixels (either view's): the nearest corner's vertex
+// within `vertexRadius`, else the nearest side's edge within `edgeRadius`,
+// else the face. On small faces the radii shrink (to 0.3 and 0.15 of the
+// shortest side), so that the face's middle stays the face.
+Selection pickWithinFace(const TriangleMesh& mesh, Index face, const std::array<Vec2, 3>& corners,
+                         const Vec2& click, double vertexRadius, double edgeRadius);
 
 // Whether the snapshot has the element the selection names.
 bool selectionExists(const Snapshot& snapshot, const Selection& selection);
