@@ -6,6 +6,7 @@
 #include "SurfaceFormat.h"
 
 #include <QApplication>
+#include <QScreen>
 #include <QTimer>
 
 int main(int argc, char* argv[]) {
@@ -16,6 +17,12 @@ int main(int argc, char* argv[]) {
     QApplication::setOrganizationName(QStringLiteral("contour"));
 
     contour::MainWindow window;
+    // Both views side by side between two docks need room: a first start
+    // takes most of the screen (a saved geometry wins below).
+    if (const QScreen* screen = QGuiApplication::primaryScreen()) {
+        const QSize room = screen->availableGeometry().size() * 0.9;
+        window.resize(window.size().expandedTo(room));
+    }
     // Recent files and the window's geometry and layout persist (QSettings).
     window.sessionController()->setUseSettings(true);
     window.sessionController()->restoreWindowSettings();
