@@ -322,6 +322,7 @@ GroundTruth DenseGroundTruth::compute(const Camera& camera) const {
         while (true) {
             used[s] = 1;
             loop.faces.push_back(segments[s].face);
+            loop.segmentFaces.push_back(segments[s].face);
             const int other = ends[s][0] == c ? ends[s][1] : ends[s][0];
             if (other == startCrossing) {
                 loop.closed = true;
@@ -397,14 +398,23 @@ std::vector<MethodLoop> methodLoops(const Snapshot& snapshot) {
             continue;
         MethodLoop loop;
         loop.closed = line.closed;
-        for (Index element : line.segmentElement) {
+        for (size_t i = 0; i < line.segmentElement.size(); ++i) {
+            const Index element = line.segmentElement[i];
+            std::array<Index, 2> crossed{kInvalidIndex, kInvalidIndex};
             if (line.source == SegmentSource::Face) {
-                loop.faces.push_back(domainFace[element]);
+                crossed[0] = domainFace[element];
             } else {
                 const Index h = mesh.edgeHalfedge(element);
-                loop.faces.push_back(domainFace[TriangleMesh::face(h)]);
+                crossed[0] = domainFace[TriangleMesh::face(h)];
                 if (!mesh.isBoundary(h))
-                    loop.faces.push_back(domainFace[TriangleMesh::face(mesh.opposite(h))]);
+                    crossed[1] = domainFace[TriangleMesh::face(mesh.opposite(h))];
+            }
+            for (const Index f : crossed) {
+                if (f == kInvalidIndex)
+                    continue;
+                loop.faces.push_back(f);
+                for (size_t k : {i, (i + 1) % line.points.size()})
+                    loop.facePoints.emplace_back(f, line.points[k].position);
             }
         }
         std::sort(loop.faces.begin(), loop.faces.end());
@@ -438,10 +448,19 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
             const Index a = line.points[i].vertex, b = line.points[i + 1].vertex;
             if (a == kInvalidIndex || b == kInvalidIndex)
                 continue;
-            for (double t : {0.05, 0.25, 0.5, 0.75, 0.95})
-                if (const std::optional<Preimage> p =
-                        charts.interpolate(preimage(a), preimage(b), t))
+            // Both ends and 31 points between: the domain path of an edge may
+            // clip a domain face's corner (a C vertex sits on a domain edge
+            // or near a corner more often than not).
+            constexpr int kSteps = 32;
+            for (int k = 0; k <= kSteps; ++k)
+                if (const std::optional<Preimage> p = charts.interpolate(
+                        preimage(a), preimage(b), static_cast<double>(k) / kSteps)) {
                     loop.faces.push_back(p->face);
+                    // On the straight edge (the drawn curve), not on the surface.
+                    const double t = static_cast<double>(k) / kSteps;
+                    loop.facePoints.emplace_back(p->face, (1.0 - t) * line.points[i].position +
+                                                              t * line.points[i + 1].position);
+                }
         }
         std::sort(loop.faces.begin(), loop.faces.end());
         loop.faces.erase(std::unique(loop.faces.begin(), loop.faces.end()), loop.faces.end());
@@ -450,8 +469,75 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
     return loops;
 }
 
+namespace {
+
+// Image distance from p to the nearest of the segments.
+double imageDistance(const Vec2& p, const std::vector<std::array<Vec2, 2>>& segments) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : segments) {
+        const Vec2 ab = b - a;
+        const double t =
+            ab.squaredNorm() > 0.0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        best = std::min(best, (a + t * ab - p).norm());
+    }
+    return best;
+}
+
+// TopologyComparison::worstMismatchPixels and mismatchesBeyond over the
+// matched loop pairs.
+void measureMismatches(TopologyComparison& r, const GroundTruth& truth, const Snapshot& snapshot,
+                       const std::vector<MethodLoop>& method,
+                       const std::vector<std::pair<int, int>>& matched, const Camera& camera,
+                       double tolerancePixels) {
+    r.toleranceMismatchPixels = tolerancePixels;
+    const auto pixel = [&](const Vec3& p) {
+        return camera.project(p).pixel;
+    };
+    // Every curve of each side, as image segments.
+    std::vector<std::array<Vec2, 2>> truthSegments, methodSegments;
+    for (const GroundTruthLoop& loop : truth.loops)
+        for (size_t k = 0; k < loop.segmentFaces.size(); ++k)
+            truthSegments.push_back(
+                {pixel(loop.points[k]), pixel(loop.points[(k + 1) % loop.points.size()])});
+    for (const Polyline& line : *snapshot.curves)
+        if (line.type == CurveType::Contour)
+            for (size_t i = 0; i + 1 < line.points.size() + (line.closed ? 1 : 0); ++i)
+                methodSegments.push_back(
+                    {pixel(line.points[i].position),
+                     pixel(line.points[(i + 1) % line.points.size()].position)});
+    for (const auto& [t, m] : matched) {
+        const GroundTruthLoop& a = truth.loops[static_cast<size_t>(t)];
+        const MethodLoop& b = method[static_cast<size_t>(m)];
+        std::vector<Index> onlyTruth, onlyMethod;
+        std::set_difference(a.faces.begin(), a.faces.end(), b.faces.begin(), b.faces.end(),
+                            std::back_inserter(onlyTruth));
+        std::set_difference(b.faces.begin(), b.faces.end(), a.faces.begin(), a.faces.end(),
+                            std::back_inserter(onlyMethod));
+        for (const Index f : onlyTruth) {
+            double worst = 0.0;
+            for (size_t k = 0; k < a.segmentFaces.size(); ++k)
+                if (a.segmentFaces[k] == f)
+                    for (size_t e : {k, (k + 1) % a.points.size()})
+                        worst = std::max(worst, imageDistance(pixel(a.points[e]), methodSegments));
+            r.worstMismatchPixels = std::max(r.worstMismatchPixels, worst);
+            r.mismatchesBeyond += worst > tolerancePixels;
+        }
+        for (const Index f : onlyMethod) {
+            double worst = 0.0;
+            for (const auto& [face, point] : b.facePoints)
+                if (face == f)
+                    worst = std::max(worst, imageDistance(pixel(point), truthSegments));
+            r.worstMismatchPixels = std::max(r.worstMismatchPixels, worst);
+            r.mismatchesBeyond += worst > tolerancePixels;
+        }
+    }
+}
+
+} // namespace
+
 TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot,
-                                   std::shared_ptr<const SmoothSurface> surface) {
+                                   std::shared_ptr<const SmoothSurface> surface,
+                                   const Camera* camera, double tolerancePixels) {
     TopologyComparison r;
     const std::vector<MethodLoop> method =
         surface && snapshot.field(fields::kPreimageFace)
@@ -488,11 +574,13 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
     std::sort(pairs.begin(), pairs.end(),
               [](const Pair& x, const Pair& y) { return x.jaccard > y.jaccard; });
     std::vector<char> truthUsed(r.truthLoops, 0), methodUsed(r.methodLoops, 0);
+    std::vector<std::pair<int, int>> matched; // (truth loop, method loop)
     double sum = 0.0;
     for (const Pair& p : pairs) {
         if (truthUsed[p.truth] || methodUsed[p.method])
             continue;
         truthUsed[p.truth] = methodUsed[p.method] = 1;
+        matched.emplace_back(p.truth, p.method);
         ++r.matchedLoops;
         r.sameFaceLoops += p.same;
         r.facesInBoth += p.common;
@@ -501,6 +589,8 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
         sum += p.jaccard;
     }
     r.meanJaccard = r.truthLoops > 0 ? sum / r.truthLoops : (r.methodLoops == 0 ? 1.0 : 0.0);
+    if (camera)
+        measureMismatches(r, truth, snapshot, method, matched, *camera, tolerancePixels);
     return r;
 }
 

@@ -51,6 +51,9 @@ struct GroundTruthLoop {
     std::vector<Preimage> preimages;     // the same, as preimages
     std::vector<double> radialCurvature; // at each point, NaN where undefined
     std::vector<Index> faces;            // domain faces crossed, sorted, unique
+    // The domain face of each lattice segment, in order: segment k joins
+    // points k and k + 1 (the last one of a closed loop joins back to 0).
+    std::vector<Index> segmentFaces;
     int cusps = 0;
 };
 
@@ -107,12 +110,26 @@ struct TopologyComparison {
     int facesOnlyInTruth = 0, facesOnlyInMethod = 0, facesInBoth = 0; // over matched pairs
     int truthCusps = 0;
     int methodCusps = -1; // the snapshot's "cusps" counter, -1 when it has none
+    // With a camera: how far (image pixels) each face crossed by only one side
+    // of a matched pair lies from the other side's curve, as the largest
+    // distance from that side's points in the face to the other side's
+    // nearest contour segment. A chord that cuts a domain face's corner where
+    // the true contour grazes it misses the face by a fraction of a pixel; a
+    // wrong topology misses it by much more.
+    double worstMismatchPixels = 0.0; // 0 when every face set matches
+    int mismatchesBeyond = 0;         // faces farther than toleranceMismatchPixels
+    double toleranceMismatchPixels = 0.0;
 
     bool loopCountsMatch() const {
         return truthLoops == methodLoops && truthOpenLoops == methodOpenLoops;
     }
     bool faceSetsMatch() const { return loopCountsMatch() && sameFaceLoops == truthLoops; }
     bool cuspCountsMatch() const { return methodCusps == truthCusps; }
+    // Every truth loop matched, and each face in one set only lies within
+    // the tolerance of the other side's curve (needs the camera).
+    bool faceSetsMatchWithinTolerance() const {
+        return loopCountsMatch() && matchedLoops == truthLoops && mismatchesBeyond == 0;
+    }
 };
 
 // The domain faces each contour polyline of the snapshot crosses (sorted,
@@ -121,6 +138,9 @@ struct TopologyComparison {
 struct MethodLoop {
     bool closed = false;
     std::vector<Index> faces;
+    // Points of the curve and the domain face each lies in (segment ends,
+    // or the samples of the preimage interpolation).
+    std::vector<std::pair<Index, Vec3>> facePoints;
 };
 std::vector<MethodLoop> methodLoops(const Snapshot& snapshot);
 // For meshes whose vertices carry preimages (the consistent method: fields
@@ -133,7 +153,10 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
 
 // `surface` given and the snapshot has preimages: methodLoopsFromPreimages,
 // otherwise methodLoops.
+// With `camera`, the face sets are also compared within
+// `tolerancePixels` (worstMismatchPixels, mismatchesBeyond).
 TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& snapshot,
-                                   std::shared_ptr<const SmoothSurface> surface = nullptr);
+                                   std::shared_ptr<const SmoothSurface> surface = nullptr,
+                                   const Camera* camera = nullptr, double tolerancePixels = 1.0);
 
 } // namespace contour::testing

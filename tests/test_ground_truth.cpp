@@ -173,6 +173,12 @@ constexpr int kComparisonSamples = 32;
 constexpr int kComparisonRandomViews = 0;
 #endif
 
+// A face crossed by one side only counts as a resolution difference, not a
+// topology difference, when it lies within this many image pixels of the
+// other side's curve (a chord of the consistent mesh cutting a domain face's
+// corner that the true contour grazes).
+constexpr double kFaceTolerancePixels = 1.0;
+
 void TestGroundTruth::interpolatedAgainstGroundTruth() {
     QFETCH(QString, name);
     QFETCH(int, resolution);
@@ -220,16 +226,18 @@ void TestGroundTruth::consistentAgainstGroundTruth_data() {
     // fails; the figures themselves are printed.
     QTest::addColumn<int>("minLoopsPercent");
     QTest::addColumn<int>("minCuspsPercent");
+    QTest::addColumn<int>("minFacesPercent"); // face sets within kFaceTolerancePixels
     // Measured (N = 64, 26 + 10 views): loops 100 % on every shape but spot
     // (31/36); cusps 100 % on sphere, ellipsoid, torus, 50 % bumpy torus,
     // 19 % spot, 83 % bob (the paper's corner test misses cusp pairs inside
-    // one face; see test_consistent_cusps for cusp-search-subdivision).
-    QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100;
-    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100;
-    QTest::newRow("torus") << QString("torus") << 16 << 100 << 100;
-    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 45;
-    QTest::newRow("spot") << QString("spot") << 0 << 80 << 15;
-    QTest::newRow("bob") << QString("bob") << 0 << 100 << 75;
+    // one face; see test_consistent_cusps for cusp-search-subdivision);
+    // crossed-face sets within 1 px 33/36, 35/36, 33/36, 36/36, 10/36, 35/36.
+    QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100 << 85;
+    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100 << 90;
+    QTest::newRow("torus") << QString("torus") << 16 << 100 << 100 << 85;
+    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 45 << 95;
+    QTest::newRow("spot") << QString("spot") << 0 << 80 << 15 << 20;
+    QTest::newRow("bob") << QString("bob") << 0 << 100 << 75 << 90;
 }
 
 // Issue 4, "Validation against an independent answer": the consistent
@@ -241,6 +249,7 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     QFETCH(int, resolution);
     QFETCH(int, minLoopsPercent);
     QFETCH(int, minCuspsPercent);
+    QFETCH(int, minFacesPercent);
     const auto cage = name == "spot"  ? spotCage()
                       : name == "bob" ? sampleCage("bob_controlmesh.obj")
                                       : shape(name.toStdString(), resolution);
@@ -250,17 +259,22 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     ParameterSet parameters;
     parameters.set("surface", std::string("catmull-clark"));
     const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
-    int sameLoops = 0, sameFaces = 0, sameCusps = 0, truthCusps = 0, methodCusps = 0;
+    int sameLoops = 0, sameFaces = 0, sameFacesWithin = 0, sameCusps = 0, truthCusps = 0,
+        methodCusps = 0, mismatchesBeyond = 0;
     long long onlyTruth = 0, onlyMethod = 0, both = 0;
-    double jaccard = 0.0, seconds = 0.0;
+    double jaccard = 0.0, seconds = 0.0, worstMismatch = 0.0;
     for (size_t v = 0; v < views.size(); ++v) {
         const GroundTruth truth = dense.compute(views[v]);
         const auto start = std::chrono::steady_clock::now();
         const Snapshot snapshot = runMethod("consistent", cage, views[v], parameters);
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const TopologyComparison c = compareTopology(truth, snapshot, dense.surfacePtr());
+        const TopologyComparison c =
+            compareTopology(truth, snapshot, dense.surfacePtr(), &views[v], kFaceTolerancePixels);
         sameLoops += c.loopCountsMatch();
         sameFaces += c.faceSetsMatch();
+        sameFacesWithin += c.faceSetsMatchWithinTolerance();
+        worstMismatch = std::max(worstMismatch, c.worstMismatchPixels);
+        mismatchesBeyond += c.mismatchesBeyond;
         sameCusps += c.cuspCountsMatch();
         truthCusps += c.truthCusps;
         methodCusps += std::max(0, c.methodCusps);
@@ -284,12 +298,21 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
           sameLoops, n, 100.0 * sameLoops / n, sameFaces, n, 100.0 * sameFaces / n, sameCusps, n,
           100.0 * sameCusps / n, truthCusps, methodCusps, jaccard / n, both, onlyTruth, onlyMethod,
           seconds / n);
+    qInfo("%s, consistent: crossed-face sets match within %.1f px in %d/%d views (%.0f%%); faces "
+          "crossed by one side only lie at most %.2f px from the other side's curve; %d such "
+          "faces farther than %.1f px",
+          qPrintable(name), kFaceTolerancePixels, sameFacesWithin, n, 100.0 * sameFacesWithin / n,
+          worstMismatch, mismatchesBeyond, kFaceTolerancePixels);
     // The floors were measured on the full comparison; the coarser lattice of
     // unoptimized builds only checks the shapes whose answer is exact.
     if (kComparisonSamples == 64 || name == "sphere" || name == "ellipsoid") {
         QVERIFY2(100 * sameLoops >= minLoopsPercent * n, "fewer views with matching loop counts");
         QVERIFY2(100 * sameCusps >= minCuspsPercent * n, "fewer views with matching cusp counts");
     }
+    // The coarser lattice's own chords are longer than the tolerance.
+    if (kComparisonSamples == 64)
+        QVERIFY2(100 * sameFacesWithin >= minFacesPercent * n,
+                 "fewer views with crossed-face sets matching within the tolerance");
 }
 
 void TestGroundTruth::timingOnSpot() {
