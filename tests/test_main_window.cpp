@@ -29,6 +29,8 @@
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <vtkCamera.h>
+#include <vtkRenderer.h>
 
 using namespace contour;
 
@@ -147,6 +149,7 @@ private slots:
     void lighterDrawingWhileOrbiting();
     void eitherViewMaximised();
     void rightDockHoldsTogglesAndLegends();
+    void decimatedCopyWhileDraggingLargeMesh();
 
 private:
     QString sample(const QString& name);
@@ -658,6 +661,12 @@ void TestMainWindow::lighterDrawingWhileOrbiting() {
     qInfo("contour pixels: still %lld, while moving %lld", b.contour, m.contour);
     QVERIFY(m.contour < b.contour);
     QVERIFY(after == before);
+    // A small mesh is always drawn in full, even while moving.
+    QVERIFY(view->hasMesh());
+    QVERIFY(window_->currentSnapshot().mesh->faceCount() < SceneView3D::kLevelOfDetailMinFaces);
+    view->setMotionDrawing(true);
+    QVERIFY(!view->showsLevelOfDetail());
+    view->setMotionDrawing(false);
 }
 
 void TestMainWindow::eitherViewMaximised() {
@@ -701,6 +710,75 @@ void TestMainWindow::rightDockHoldsTogglesAndLegends() {
     QVERIFY(actions.contains(window_->controlCageAction()));
     // The facing legend is filled for the torus's front/back colouring.
     QVERIFY(window_->colorLegend()->text().contains(QStringLiteral("front")));
+}
+
+// On a mesh above SceneView3D::kLevelOfDetailMinFaces faces a drag draws the
+// decimated copy, coloured like the faces it stands for; the release brings
+// back the full mesh: the very same pixels as before the drag.
+void TestMainWindow::decimatedCopyWhileDraggingLargeMesh() {
+    const QString path = tmp_.filePath(QStringLiteral("large_torus.obj"));
+    writeObj(makeProceduralShapeWithFaces("torus", 80000), path.toStdString());
+    QVERIFY(window_->openMesh(path));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    SceneView3D* view = window_->sceneView();
+    const Snapshot s = window_->currentSnapshot();
+    QVERIFY(s.mesh);
+    const long long faces = s.mesh->faceCount();
+    QVERIFY2(faces >= SceneView3D::kLevelOfDetailMinFaces, qPrintable(QString::number(faces)));
+    QVERIFY(view->showsFacing());
+    // Built on a worker thread once the snapshot has been shown.
+    QTRY_VERIFY_WITH_TIMEOUT(view->levelOfDetailReady(), 120000);
+    const long long copyFaces = view->levelOfDetailFaceCount();
+    qInfo("decimated copy: %lld of %lld faces, built in %.2f s", copyFaces, faces,
+          view->levelOfDetailSeconds());
+    QVERIFY(copyFaces > SceneView3D::kLevelOfDetailFaces / 2);
+    QVERIFY(copyFaces <= SceneView3D::kLevelOfDetailFaces + SceneView3D::kLevelOfDetailFaces / 20);
+    QVERIFY(!view->showsLevelOfDetail());
+    QCOMPARE(view->displayedFaceCount(), faces);
+
+    // Sideways to the analysis camera, so that back faces are in sight.
+    view->orbit(100.0, 20.0);
+    vtkCamera* camera = view->renderer()->GetActiveCamera();
+    double position[3], focal[3], up[3];
+    camera->GetPosition(position);
+    camera->GetFocalPoint(focal);
+    camera->GetViewUp(up);
+    const QImage before = view->grabImage();
+
+    // A drag from the corner (background: a release there picks nothing).
+    const QPoint start(4, 4);
+    QTest::mousePress(view, Qt::LeftButton, {}, start);
+    QTest::mouseMove(view, start + QPoint(25, 10));
+    QVERIFY(view->motionDrawing());
+    QVERIFY(view->showsLevelOfDetail());
+    QCOMPARE(view->displayedFaceCount(), copyFaces);
+    const QImage moving = view->grabImage();
+    moving.save(grabPath(QStringLiteral("decimated_copy")));
+    // The same moment drawn with the full mesh: another picture, with the
+    // same meaning (front and back in about the same proportions).
+    view->setLevelOfDetail(false);
+    QVERIFY(!view->showsLevelOfDetail());
+    const QImage movingFull = view->grabImage();
+    view->setLevelOfDetail(true);
+    QVERIFY(view->showsLevelOfDetail());
+    QVERIFY(moving != movingFull);
+    const ColourCounts copy = countColours(moving), full = countColours(movingFull);
+    qInfo("front/back pixels while moving: copy %.4f/%.4f, full mesh %.4f/%.4f",
+          copy.frontFraction(), copy.backFraction(), full.frontFraction(), full.backFraction());
+    QVERIFY(full.frontFraction() > 0.05 && full.backFraction() > 0.005);
+    QVERIFY(std::abs(copy.frontFraction() - full.frontFraction()) < 0.1 * full.frontFraction());
+    QVERIFY(std::abs(copy.backFraction() - full.backFraction()) < 0.2 * full.backFraction());
+    QTest::mouseRelease(view, Qt::LeftButton, {}, start + QPoint(25, 10));
+    QVERIFY(!view->motionDrawing());
+    QVERIFY(!view->showsLevelOfDetail());
+    QCOMPARE(view->displayedFaceCount(), faces);
+
+    // Back at the camera of before the drag: the very same pixels.
+    camera->SetPosition(position);
+    camera->SetFocalPoint(focal);
+    camera->SetViewUp(up);
+    const QImage after = view->grabImage();
+    QVERIFY(after == before);
 }
 
 int main(int argc, char** argv) {

@@ -6,6 +6,8 @@
 
 #include <QFileInfo>
 #include <QMouseEvent>
+#include <QTimer>
+#include <QtConcurrent>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -133,6 +135,24 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     meshProperty->SetSpecular(0.0);
     meshActor_->VisibilityOff();
     ren->AddActor(meshActor_);
+
+    // The decimated copy drawn instead of the mesh while moving: the same
+    // lighting and polygon offset, its colours per triangle (direct RGB).
+    lodMapper_->SetScalarModeToUseCellData();
+    lodMapper_->SetColorModeToDirectScalars();
+    lodMapper_->ScalarVisibilityOn();
+    lodMapper_->SetRelativeCoincidentTopologyPolygonOffsetParameters(8.0, 100.0);
+    lodMapper_->SetInputData(vtkSmartPointer<vtkPolyData>::New());
+    lodActor_->SetMapper(lodMapper_);
+    lodActor_->GetProperty()->DeepCopy(meshProperty);
+    lodActor_->VisibilityOff();
+    lodActor_->PickableOff();
+    ren->AddActor(lodActor_);
+    lodPool_.setMaxThreadCount(1);
+    lodTimer_ = new QTimer(this);
+    lodTimer_->setSingleShot(true);
+    lodTimer_->setInterval(kLevelOfDetailDelayMs);
+    connect(lodTimer_, &QTimer::timeout, this, &SceneView3D::requestMotionMesh);
 
     // CurveType 0 contour, 1 boundary, 2 surface intersection.
     curveColors_->SetNumberOfTableValues(3);
@@ -359,7 +379,13 @@ void SceneView3D::setMotionDrawing(bool on) {
         }
         stillStyles_.clear();
     }
+    // A drag on a mesh whose copy is not built yet (the idle delay has not
+    // passed) starts the build now; the copy is shown when it arrives.
+    if (on && lodEnabled_ && mesh_ && mesh_->faceCount() >= kLevelOfDetailMinFaces &&
+        lodMesh_ != mesh_ && lodPending_ != mesh_)
+        requestMotionMesh();
     updateOverlayVisibility();
+    updateMeshLevel();
     requestRender();
 }
 
@@ -367,7 +393,161 @@ void SceneView3D::onInteraction(vtkObject*, unsigned long eventId, void*) {
     setMotionDrawing(eventId == vtkCommand::StartInteractionEvent);
 }
 
+void SceneView3D::setLevelOfDetail(bool enabled) {
+    if (enabled == lodEnabled_)
+        return;
+    lodEnabled_ = enabled;
+    if (enabled && mesh_ && mesh_->faceCount() >= kLevelOfDetailMinFaces && lodMesh_ != mesh_ &&
+        lodPending_ != mesh_)
+        requestMotionMesh();
+    updateMeshLevel();
+    requestRender();
+}
+
+bool SceneView3D::levelOfDetailReady() const {
+    return mesh_ && lod_.data && lodMesh_ == mesh_;
+}
+
+bool SceneView3D::showsLevelOfDetail() const {
+    return lodActor_->GetVisibility() != 0;
+}
+
+long long SceneView3D::levelOfDetailFaceCount() const {
+    return levelOfDetailReady() ? lod_.data->GetNumberOfPolys() : 0;
+}
+
+double SceneView3D::levelOfDetailSeconds() const {
+    return levelOfDetailReady() ? lod_.seconds : 0.0;
+}
+
+void SceneView3D::requestMotionMesh() {
+    lodTimer_->stop();
+    if (!mesh_ || !lodEnabled_ || mesh_->faceCount() < kLevelOfDetailMinFaces ||
+        lodMesh_ == mesh_ || lodPending_ == mesh_)
+        return;
+    std::shared_ptr<const TriangleMesh> mesh = mesh_;
+    lodPending_ = mesh;
+    auto* watcher = new QFutureWatcher<MotionMesh>(this);
+    connect(watcher, &QFutureWatcher<MotionMesh>::finished, this, [this, watcher, mesh] {
+        watcher->deleteLater();
+        if (lodPending_ == mesh)
+            lodPending_.reset();
+        // A copy of a mesh no longer shown is dropped.
+        MotionMesh result = watcher->result();
+        if (mesh != mesh_ || !result.data)
+            return;
+        lod_ = std::move(result);
+        lodMesh_ = mesh;
+        lodMapper_->SetInputData(lod_.data);
+        lodColourStamp_ = colourStamp_ - 1; // colour it before it is shown
+        updateMeshLevel();
+        if (showsLevelOfDetail())
+            requestRender();
+        emit levelOfDetailBuilt();
+    });
+    // A pool of one thread: the build never takes both cores from a
+    // running method.
+    watcher->setFuture(QtConcurrent::run(
+        &lodPool_, [mesh] { return buildMotionMesh(*mesh, kLevelOfDetailFaces); }));
+}
+
+void SceneView3D::updateMeshLevel() {
+    const bool lod = motionDrawing_ && lodEnabled_ && meshShown() && levelOfDetailReady();
+    if (lod && lodColourStamp_ != colourStamp_)
+        recolourMotionMesh();
+    meshActor_->SetVisibility(meshShown() && !lod);
+    lodActor_->SetVisibility(lod);
+}
+
+void SceneView3D::recolourMotionMesh() {
+    lodColourStamp_ = colourStamp_;
+    vtkPolyData* lod = lod_.data;
+    const std::vector<Index>& source = lod_.sourceFaces;
+    const auto count = static_cast<vtkIdType>(source.size());
+    // Shaded like the mesh: smooth when the mesh has the surface's normals.
+    lod->GetPointData()->SetNormals(shownNormals_ ? lod_.normals.Get() : nullptr);
+
+    // What the mesh mapper colours a face by (updateColoring()): a cell
+    // array, or a vertex field whose mean over the face stands for it.
+    vtkDataArray* values = nullptr;
+    bool perVertex = false;
+    if (meshMapper_->GetScalarVisibility()) {
+        switch (meshMapper_->GetScalarMode()) {
+        case VTK_SCALAR_MODE_USE_CELL_DATA:
+            values = meshData_->GetCellData()->GetScalars();
+            break;
+        case VTK_SCALAR_MODE_USE_CELL_FIELD_DATA:
+            values = meshData_->GetCellData()->GetArray(meshMapper_->GetArrayName());
+            break;
+        case VTK_SCALAR_MODE_USE_POINT_FIELD_DATA:
+            values = meshData_->GetPointData()->GetArray(meshMapper_->GetArrayName());
+            perVertex = true;
+            break;
+        default:
+            break;
+        }
+    }
+    vtkScalarsToColors* table = meshMapper_->GetLookupTable();
+    double plain[3];
+    meshActor_->GetProperty()->GetColor(plain);
+
+    // The translucent radial tint folded into the colours (the tint actor
+    // is hidden while moving): the same blend, one opaque triangle.
+    const bool tint = isOverlayEnabled(SceneOverlay::RadialFaces) &&
+                      isOverlayAvailable(SceneOverlay::RadialFaces);
+    const auto faceLabels = [this](const char* name) -> const std::vector<int>* {
+        const Field* field = snapshot_.field(name);
+        if (!field || field->location != FieldLocation::Face || !field->labels() ||
+            static_cast<Index>(field->labels()->size()) != mesh_->faceCount())
+            return nullptr;
+        return field->labels();
+    };
+    const std::vector<int>* radial = tint ? faceLabels(fields::kRadial) : nullptr;
+    const std::vector<int>* standard = tint ? faceLabels(fields::kStandardRadial) : nullptr;
+    const double opacity = sceneColors::kRadialTintOpacity;
+
+    auto colors = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    colors->SetName("motion_colors");
+    colors->SetNumberOfComponents(3);
+    colors->SetNumberOfTuples(count);
+    unsigned char* out = colors->GetPointer(0);
+    for (vtkIdType c = 0; c < count; ++c) {
+        const Index f = source[static_cast<size_t>(c)];
+        std::array<double, 3> rgb{plain[0], plain[1], plain[2]};
+        if (values && table) {
+            double value = 0.0;
+            if (perVertex) {
+                const Triangle& t = mesh_->triangle(f);
+                for (int i = 0; i < 3; ++i)
+                    value += values->GetComponent(t[i], 0) / 3.0;
+            } else {
+                value = values->GetComponent(f, 0);
+            }
+            const unsigned char* mapped = table->MapValue(value);
+            for (int k = 0; k < 3; ++k)
+                rgb[k] = mapped[k] / 255.0;
+        }
+        const bool isStandard = standard && (*standard)[f] != 0;
+        if (isStandard || (radial && (*radial)[f] != 0)) {
+            const SceneColor& t =
+                isStandard ? sceneColors::kStandardRadialTint : sceneColors::kRadialTint;
+            const std::array<double, 3> tintRgb{t.r, t.g, t.b};
+            for (int k = 0; k < 3; ++k)
+                rgb[k] = (1.0 - opacity) * rgb[k] + opacity * tintRgb[k];
+        }
+        for (int k = 0; k < 3; ++k)
+            *out++ = static_cast<unsigned char>(std::clamp(rgb[k], 0.0, 1.0) * 255.0 + 0.5);
+    }
+    lod->GetCellData()->SetScalars(colors);
+    lod->Modified();
+}
+
 SceneView3D::~SceneView3D() {
+    // A build still running only touches its own data; wait for it so that
+    // no thread outlives the view.
+    for (QFutureWatcher<MotionMesh>* watcher : findChildren<QFutureWatcher<MotionMesh>*>())
+        watcher->disconnect(this);
+    lodPool_.waitForDone();
     if (vtkInteractorObserver* style = interactor()->GetInteractorStyle())
         for (unsigned long tag : interactionObservers_)
             style->RemoveObserver(tag);
@@ -383,7 +563,16 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
         mesh_ = snapshot.mesh;
         meshData_ = meshToPolyData(*mesh_);
         meshMapper_->SetInputData(meshData_);
-        meshActor_->VisibilityOn();
+        // The decimated copy of the previous mesh is of no use any more; the
+        // new one is built once the window has been idle for a moment, so
+        // that stepping through phases does not queue a build per phase.
+        lod_ = {};
+        lodMesh_.reset();
+        lodMapper_->SetInputData(vtkSmartPointer<vtkPolyData>::New());
+        if (mesh_->faceCount() >= kLevelOfDetailMinFaces && lodEnabled_)
+            lodTimer_->start();
+        else
+            lodTimer_->stop();
         shownFieldValues_.reset();
         shownArrayName_.clear();
         shownNormals_.reset();
@@ -408,6 +597,7 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
         meshData_->GetCellData()->RemoveArray(kVtkFacingArray);
     updateColoring();
     updateOverlays();
+    updateMeshLevel();
 
     if (snapshot.curves != curves_) {
         curves_ = snapshot.curves;
@@ -444,10 +634,12 @@ void SceneView3D::setColorField(const std::string& field) {
     if (!meshData_)
         return;
     updateColoring();
+    updateMeshLevel(); // recolours the decimated copy if it is drawn
     requestRender();
 }
 
 void SceneView3D::updateColoring() {
+    ++colourStamp_;
     const std::string previousField = displayedField_;
     const std::vector<std::string> previousFields = scalarFields_;
     const std::vector<std::string> previousLabels = labelFields_;
@@ -539,6 +731,7 @@ void SceneView3D::updateColoring() {
 }
 
 void SceneView3D::updateOverlays() {
+    ++colourStamp_;
     std::array<bool, kSceneOverlayCount> wasAvailable{};
     for (int i = 0; i < kSceneOverlayCount; ++i)
         wasAvailable[i] = static_cast<bool>(overlays_[i].data);
@@ -577,6 +770,8 @@ void SceneView3D::updateOverlayVisibility() {
 
 void SceneView3D::setOverlayEnabled(SceneOverlay overlay, bool enabled) {
     overlays_[static_cast<int>(overlay)].enabled = enabled;
+    ++colourStamp_; // the radial tint is folded into the moving copy's colours
+    updateMeshLevel();
     updateOverlayVisibility();
     requestRender();
 }
@@ -592,7 +787,7 @@ bool SceneView3D::isOverlayAvailable(SceneOverlay overlay) const {
 bool SceneView3D::isOverlayShown(SceneOverlay overlay) const {
     if (motionDrawing_ && overlay == SceneOverlay::RadialFaces)
         return false;
-    return isOverlayEnabled(overlay) && isOverlayAvailable(overlay) && meshActor_->GetVisibility();
+    return isOverlayEnabled(overlay) && isOverlayAvailable(overlay) && meshShown();
 }
 
 long long SceneView3D::overlayElementCount(SceneOverlay overlay) const {
@@ -607,7 +802,7 @@ vtkPolyData* SceneView3D::overlayData(SceneOverlay overlay) const {
 }
 
 bool SceneView3D::isScalarBarVisible() const {
-    return meshActor_->GetVisibility() && scalarBar_->GetVisibility();
+    return meshShown() && scalarBar_->GetVisibility();
 }
 
 std::string SceneView3D::scalarBarTitle() const {
@@ -699,21 +894,20 @@ void SceneView3D::recolourViewGraph() {
 }
 
 void SceneView3D::updateViewGraphVisibility() {
-    const bool meshShown = meshActor_->GetVisibility();
-    curveActor_->SetVisibility(meshShown && curveCount_ > 0 && !graph_);
+    curveActor_->SetVisibility(meshShown() && curveCount_ > 0 && !graph_);
     for (int i = 0; i < kChainStateCount; ++i)
         chainLayers_[static_cast<size_t>(i)].actor->SetVisibility(
             viewGraphChainsShown(static_cast<ChainState>(i)) > 0);
     for (int hidden = 0; hidden < 2; ++hidden) {
         const ViewGraphLayer& layer = nodeLayers_[static_cast<size_t>(hidden)];
         layer.actor->SetVisibility(graph_ && layer.data && showNodes_ && (!hidden || showHidden_) &&
-                                   meshActor_->GetVisibility());
+                                   meshShown());
     }
 }
 
 long long SceneView3D::viewGraphChainsShown(ChainState state) const {
     const ViewGraphLayer& layer = chainLayers_[static_cast<size_t>(state)];
-    if (!graph_ || !layer.data || !meshActor_->GetVisibility())
+    if (!graph_ || !layer.data || !meshShown())
         return 0;
     if ((state == ChainState::Hidden && !showHidden_) ||
         (state == ChainState::Simplified && !showSimplified_))
@@ -762,7 +956,9 @@ void SceneView3D::setChainColoring(ChainColoring coloring) {
 }
 
 long long SceneView3D::displayedFaceCount() const {
-    return meshData_ && meshActor_->GetVisibility() ? meshData_->GetNumberOfPolys() : 0;
+    if (showsLevelOfDetail())
+        return lod_.data->GetNumberOfPolys();
+    return meshData_ ? meshData_->GetNumberOfPolys() : 0;
 }
 
 void SceneView3D::clearScene() {
@@ -777,7 +973,11 @@ void SceneView3D::clearScene() {
     curves_.reset();
     curveCount_ = 0;
     showsFacing_ = false;
-    meshActor_->VisibilityOff();
+    lod_ = {};
+    lodMesh_.reset();
+    lodTimer_->stop();
+    lodMapper_->SetInputData(vtkSmartPointer<vtkPolyData>::New());
+    updateMeshLevel();
     curveActor_->VisibilityOff();
     updateViewGraph();
     frustumActor_->VisibilityOff();
@@ -851,7 +1051,7 @@ void SceneView3D::beforeRender() {
 }
 
 Selection SceneView3D::pick(const QPointF& position) const {
-    if (!mesh_ || !meshData_ || !meshActor_->GetVisibility())
+    if (!mesh_ || !meshShown())
         return {};
     const double ratio = devicePixelRatioF();
     const QSize size = deviceSize();
@@ -879,39 +1079,8 @@ Selection SceneView3D::pick(const QPointF& position) const {
             return Selection::face(f);
         corner[static_cast<size_t>(i)] = p.pixel;
     }
-    double shortest = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 3; ++i)
-        shortest = std::min(
-            shortest,
-            (corner[static_cast<size_t>((i + 1) % 3)] - corner[static_cast<size_t>(i)]).norm());
-    // On small faces the radii shrink, so that the face's middle stays the
-    // face.
-    const double vertexRadius = std::min(kPickVertexPixels * ratio, 0.3 * shortest);
-    const double edgeRadius = std::min(kPickEdgePixels * ratio, 0.15 * shortest);
-    int nearestCorner = 0;
-    for (int i = 1; i < 3; ++i)
-        if ((corner[static_cast<size_t>(i)] - click).norm() <
-            (corner[static_cast<size_t>(nearestCorner)] - click).norm())
-            nearestCorner = i;
-    if ((corner[static_cast<size_t>(nearestCorner)] - click).norm() <= vertexRadius)
-        return Selection::vertex(t[nearestCorner]);
-    int nearestEdge = -1;
-    double edgeDistance = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 3; ++i) {
-        const Vec2 a = corner[static_cast<size_t>(i)];
-        const Vec2 ab = corner[static_cast<size_t>((i + 1) % 3)] - a;
-        const double s = ab.squaredNorm() > 0.0
-                             ? std::clamp((click - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
-                             : 0.0;
-        const double d = (a + s * ab - click).norm();
-        if (d < edgeDistance) {
-            edgeDistance = d;
-            nearestEdge = i;
-        }
-    }
-    if (nearestEdge >= 0 && edgeDistance <= edgeRadius)
-        return Selection::edge(mesh_->edge(TriangleMesh::halfedge(f, nearestEdge)));
-    return Selection::face(f);
+    return pickWithinFace(*mesh_, f, corner, click, kPickVertexPixels * ratio,
+                          kPickEdgePixels * ratio);
 }
 
 vtkPolyData* SceneView3D::highlightData() const {
@@ -978,7 +1147,7 @@ void SceneView3D::updateHighlight() {
     }
     highlightMapper_->SetInputData(highlightData_ ? highlightData_.Get()
                                                   : vtkSmartPointer<vtkPolyData>::New().Get());
-    highlightActor_->SetVisibility(highlightData_ && meshActor_->GetVisibility());
+    highlightActor_->SetVisibility(highlightData_ && meshShown());
 }
 
 void SceneView3D::frameFace(Index face) {

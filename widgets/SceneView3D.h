@@ -14,6 +14,7 @@
 // type (ViewGraphStyle.h): those on a visible chain drawn over everything,
 // those only on hidden chains depth-tested with the hidden chains.
 #include "DivergingColorMap.h"
+#include "MotionMesh.h"
 #include "SceneColors.h"
 #include "Selection.h"
 #include "ViewGraphStyle.h"
@@ -23,6 +24,7 @@
 #include "pipeline/Snapshot.h"
 
 #include <QRect>
+#include <QThreadPool>
 #include <array>
 #include <memory>
 #include <optional>
@@ -35,6 +37,7 @@
 #include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
 
+class QTimer;
 class vtkPolyData;
 
 namespace contour {
@@ -174,6 +177,28 @@ public:
     // bench_workbench). Off restores every actor's own style.
     void setMotionDrawing(bool on);
     bool motionDrawing() const { return motionDrawing_; }
+    // Level of detail while moving (MotionMesh.h, as ParaView does): for a
+    // mesh of at least kLevelOfDetailMinFaces faces a decimated copy of
+    // about kLevelOfDetailFaces triangles is built on a worker thread once
+    // the snapshot has been shown for kLevelOfDetailDelayMs (or at the first
+    // drag). While motionDrawing() it is drawn instead of the mesh, each
+    // triangle in the colour of the face it stands for (facing, VBO or the
+    // scalar field, with the radial tint folded in); every overlay, curve
+    // and the view graph are still drawn from the exact data. Until the copy
+    // is ready the full mesh is drawn; when the motion ends the full mesh is
+    // drawn again (the very same picture as before). On by default.
+    static constexpr Index kLevelOfDetailMinFaces = 50000;
+    static constexpr Index kLevelOfDetailFaces = 25000;
+    static constexpr int kLevelOfDetailDelayMs = 300;
+    void setLevelOfDetail(bool enabled);
+    bool levelOfDetailEnabled() const { return lodEnabled_; }
+    // True when the decimated copy of the current mesh is built.
+    bool levelOfDetailReady() const;
+    // True when the decimated copy is drawn now instead of the mesh.
+    bool showsLevelOfDetail() const;
+    // Triangles of the copy and the wall time its build took (0 when none).
+    long long levelOfDetailFaceCount() const;
+    double levelOfDetailSeconds() const;
     // The control cage (Snapshot::cage) as a wireframe, off by default.
     void setShowControlCage(bool show);
     bool showsControlCage() const { return showCage_; }
@@ -194,6 +219,8 @@ signals:
     void snapshotChanged();
     // A left click without drag: what pick() found there (possibly nothing).
     void pickRequested(const Selection& selection);
+    // The decimated copy of the current mesh has been built.
+    void levelOfDetailBuilt();
 
 protected:
     void beforeRender() override;
@@ -238,6 +265,26 @@ private:
     std::vector<SavedStyle> stillStyles_; // while motionDrawing_
     bool motionDrawing_ = false;
     std::array<unsigned long, 2> interactionObservers_{};
+    // Level of detail while moving (setLevelOfDetail). meshShown() says
+    // whether a mesh is displayed, by the full actor or by the copy.
+    bool meshShown() const { return static_cast<bool>(meshData_); }
+    void requestMotionMesh();
+    // Shows the copy or the full mesh, as motion drawing asks.
+    void updateMeshLevel();
+    // Colours the copy's triangles from the current colouring.
+    void recolourMotionMesh();
+    vtkNew<vtkPolyDataMapper> lodMapper_;
+    vtkNew<vtkActor> lodActor_;
+    MotionMesh lod_;
+    std::shared_ptr<const TriangleMesh> lodMesh_;    // the mesh lod_ stands for
+    std::shared_ptr<const TriangleMesh> lodPending_; // the mesh being decimated
+    QThreadPool lodPool_;
+    QTimer* lodTimer_ = nullptr;
+    bool lodEnabled_ = true;
+    // Bumped when the colouring or the overlays change, to recolour the
+    // copy only then.
+    unsigned long colourStamp_ = 0;
+    unsigned long lodColourStamp_ = 0;
     void onInteraction(vtkObject* caller, unsigned long eventId, void* callData);
     std::shared_ptr<const PolygonMesh> shownCage_;
     bool showCage_ = false;

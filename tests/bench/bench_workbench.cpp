@@ -11,10 +11,17 @@
 // on; then the 3D view is orbited N times by 360/N degrees, each frame
 // scheduled and the event loop run until it is drawn (VTK renders in
 // paintGL, then Qt composes the window), as during an interactive orbit;
-// frames per second = N / wall time. Measured twice: with the full drawing,
-// and with the lighter drawing a drag switches on (SceneView3D::
-// setMotionDrawing: 1 px lines, square points, no translucent tint). The render count of the view
-// is checked to have grown by N (a frame that was not drawn is not counted).
+// frames per second = N / wall time, next to the process's CPU time per
+// frame (all threads, llvmpipe's included: the figure to compare on a busy
+// machine). Measured four ways: the full drawing; the lighter drawing a drag
+// switches on (SceneView3D::setMotionDrawing: 1 px lines, square points, no
+// translucent tint) without and with the decimated copy of the mesh
+// (SceneView3D::setLevelOfDetail, waited for before timing); and a real drag:
+// mouse press, N moves and release sent to the view, the interactor's
+// trackball turning the camera by 360/N degrees per move, so motion drawing
+// and the decimated copy are switched on as a user gets them. The render
+// count of the view is checked to have grown by N (a frame that was not
+// drawn is not counted).
 //
 // Part 2, step latency: the step model (default bob_quad: its consistent
 // output is about 48.5k faces) is reset to the input and stepped one phase
@@ -36,6 +43,7 @@
 #include <CLI/CLI.hpp>
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
 #include <QWindow>
@@ -45,6 +53,11 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <sys/resource.h>
+#include <vector>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
 
 using namespace contour;
 using namespace contour::bench;
@@ -78,6 +91,26 @@ bool renderNextFrame(SceneView3D* view) {
     return view->renderCount() > before;
 }
 
+// CPU seconds of the whole process so far (every thread, user + system).
+double processCpuSeconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    const auto seconds = [](const timeval& t) {
+        return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+    };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+// Sends a left-button mouse event at `position` (view coordinates) to the
+// view, as a user's drag delivers it.
+void sendMouse(SceneView3D* view, QEvent::Type type, QPointF position) {
+    const Qt::MouseButtons buttons =
+        type == QEvent::MouseButtonRelease ? Qt::NoButton : Qt::LeftButton;
+    const Qt::MouseButton button = type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton;
+    QMouseEvent event(type, position, view->mapToGlobal(position), button, buttons, Qt::NoModifier);
+    QApplication::sendEvent(view, &event);
+}
+
 // Opens `path`, switches to `method` and waits for the run to end.
 bool openAndRun(MainWindow& window, const std::filesystem::path& path, const QString& method) {
     if (!window.openMesh(QString::fromStdString(path.string())) || !window.waitForIdle(3600000))
@@ -101,6 +134,7 @@ int main(int argc, char** argv) {
     int width = 1600;
     int height = 1000;
     std::string outPath;
+    bool diagnose = false;
     app.add_option("--meshes-dir", meshesDir, "Folder of the meshes")->capture_default_str();
     app.add_option("--orbit-mesh", orbitMesh, "Model orbited (file name without extension)")
         ->capture_default_str();
@@ -114,6 +148,9 @@ int main(int argc, char** argv) {
     app.add_option("--width", width, "Main window width")->capture_default_str();
     app.add_option("--height", height, "Main window height")->capture_default_str();
     app.add_option("--out", outPath, "Write the figures to this CSV file");
+    app.add_flag("--diagnose", diagnose,
+                 "Also time the drag with the overlays off, and frames in which VTK draws "
+                 "nothing (what is left: the blit and Qt's composition of the window)");
     // CLI11 sees the arguments before Qt removes its own.
     CLI11_PARSE(app, argc, argv);
 
@@ -167,36 +204,112 @@ int main(int argc, char** argv) {
                         static_cast<double>(runTimer.elapsed()) * 1e-3, faces, overlaysOn,
                         kSceneOverlayCount, view->hasViewGraph() ? "drawn" : "absent",
                         view->width(), view->height(), rendererName(view).c_str());
-            // Once at full quality (a picture still being redrawn), once with
-            // the lighter drawing an interactive drag switches on.
-            for (const bool motion : {false, true}) {
-                view->setMotionDrawing(motion);
+            // The decimated copy is built off the UI thread once the snapshot
+            // has been shown: wait for it, so that every timed frame can use it.
+            if (faces >= static_cast<std::size_t>(SceneView3D::kLevelOfDetailMinFaces)) {
+                QElapsedTimer wait;
+                wait.start();
+                while (!view->levelOfDetailReady() && wait.elapsed() < 120000)
+                    QApplication::processEvents(QEventLoop::AllEvents, 10);
+                std::printf("orbit: decimated copy for motion %s: %lld faces, built in %.2f s "
+                            "on its worker thread\n",
+                            view->levelOfDetailReady() ? "ready" : "NOT READY after 120 s",
+                            view->levelOfDetailFaceCount(), view->levelOfDetailSeconds());
+            }
+            enum class Mode { Full, Motion, MotionLod, Drag, DragNoOverlays, NothingDrawn };
+            const auto modeName = [](Mode m) {
+                switch (m) {
+                case Mode::Full:
+                    return "full drawing";
+                case Mode::Motion:
+                    return "motion drawing, full mesh";
+                case Mode::MotionLod:
+                    return "motion drawing + decimated copy";
+                case Mode::Drag:
+                    return "mouse drag through the interactor";
+                case Mode::DragNoOverlays:
+                    return "diagnosis: the same drag, overlays and view graph off";
+                case Mode::NothingDrawn:
+                    return "diagnosis: VTK draws nothing, the window is composed";
+                }
+                return "";
+            };
+            // One trackball degree is MotionFactor (10) * 20 / width pixels
+            // of horizontal mouse travel (vtkInteractorStyleTrackballCamera).
+            const double dragPixels =
+                (360.0 / frames) * view->deviceSize().width() / 200.0 / view->devicePixelRatioF();
+            std::vector<Mode> modes{Mode::Full, Mode::Motion, Mode::MotionLod, Mode::Drag};
+            if (diagnose)
+                modes.insert(modes.end(), {Mode::DragNoOverlays, Mode::NothingDrawn});
+            for (const Mode mode : modes) {
+                const bool overlays = mode != Mode::DragNoOverlays;
+                for (int i = 0; i < kSceneOverlayCount; ++i)
+                    view->setOverlayEnabled(static_cast<SceneOverlay>(i), overlays);
+                view->setShowViewGraphNodes(overlays);
+                view->setShowHiddenCurves(overlays);
+                vtkRendererCollection* renderers = view->renderWindow()->GetRenderers();
+                renderers->InitTraversal();
+                while (vtkRenderer* r = renderers->GetNextItem())
+                    r->SetDraw(mode != Mode::NothingDrawn);
+                view->setLevelOfDetail(mode != Mode::Motion);
+                view->setMotionDrawing(mode == Mode::Motion || mode == Mode::MotionLod);
+                QPointF mouse(view->width() / 4.0, view->height() / 2.0);
+                const bool drag = mode == Mode::Drag || mode == Mode::DragNoOverlays;
+                if (drag) {
+                    sendMouse(view, QEvent::MouseButtonPress, mouse);
+                    mouse.rx() += dragPixels;
+                    sendMouse(view, QEvent::MouseMove, mouse);
+                }
                 // The first frame builds the GL buffers: not timed.
                 renderNextFrame(view);
+                const bool lodShown = view->showsLevelOfDetail();
                 const int rendersBefore = view->renderCount();
+                const double cpuBefore = processCpuSeconds();
                 QElapsedTimer timer;
                 timer.start();
                 for (int f = 0; f < frames; ++f) {
-                    view->orbit(360.0 / frames, 0.0);
-                    if (!renderNextFrame(view))
-                        break;
+                    if (drag) {
+                        mouse.rx() += dragPixels;
+                        const int before = view->renderCount();
+                        sendMouse(view, QEvent::MouseMove, mouse);
+                        QElapsedTimer frame;
+                        frame.start();
+                        while (view->renderCount() == before && frame.elapsed() < 10000)
+                            QApplication::processEvents(QEventLoop::AllEvents, 5);
+                        if (view->renderCount() == before)
+                            break;
+                    } else {
+                        view->orbit(360.0 / frames, 0.0);
+                        if (!renderNextFrame(view))
+                            break;
+                    }
                 }
                 view->makeCurrent();
                 QOpenGLContext::currentContext()->functions()->glFinish();
                 view->doneCurrent();
                 const double seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
+                const double cpu = processCpuSeconds() - cpuBefore;
                 const int drawn = view->renderCount() - rendersBefore;
+                if (drag) {
+                    sendMouse(view, QEvent::MouseButtonRelease, mouse);
+                    renderNextFrame(view);
+                }
                 const double fps = drawn / seconds;
-                const char* drawing = motion ? "motion drawing" : "full drawing";
-                std::printf("orbit (%s): %d frames requested, %d rendered, %.2f s: %.1f frames per "
-                            "second (%.1f ms per frame)\n",
-                            drawing, frames, drawn, seconds, fps,
-                            1e3 * seconds / std::max(drawn, 1));
+                const char* drawing = modeName(mode);
+                std::printf("orbit (%s%s): %d frames requested, %d rendered, %.2f s: %.1f frames "
+                            "per second (%.1f ms per frame, CPU %.1f ms per frame)\n",
+                            drawing, lodShown ? ", copy shown" : "", frames, drawn, seconds, fps,
+                            1e3 * seconds / std::max(drawn, 1), 1e3 * cpu / std::max(drawn, 1));
                 if (csv)
                     csv << "orbit," << orbitMesh << ',' << orbitMethod << ',' << drawing << ','
                         << faces << ',' << drawn << ',' << seconds << ',' << fps << ",\n";
             }
+            view->setLevelOfDetail(true);
             view->setMotionDrawing(false);
+            vtkRendererCollection* renderers = view->renderWindow()->GetRenderers();
+            renderers->InitTraversal();
+            while (vtkRenderer* r = renderers->GetNextItem())
+                r->DrawOn();
         }
     } else {
         std::printf("orbit: %s not found in %s: skipped\n", orbitMesh.c_str(), meshesDir.c_str());
