@@ -1,10 +1,12 @@
 #pragma once
 // Surface–surface intersection curves of a triangle mesh (issue 5 item 2;
 // tutorial §4.2, "surface intersections" as a third curve type next to
-// contours and boundaries). Candidate face pairs come from CGAL's box
-// intersection on the faces' bounding boxes (two slabs either side of the
-// median face searched in parallel; the pairs are sorted and deduplicated,
-// so the result does not depend on the thread count). A pair in generic position is
+// contours and boundaries). Candidate face pairs (overlapping bounding boxes,
+// no shared vertex) come from a uniform grid of cells two face boxes wide,
+// searched cell by cell in parallel; a conservative double-precision plane
+// test (Shewchuk's orient3d error bound) drops the pairs certainly on one side
+// of each other's plane, and the others are sorted by face pair, so the
+// result does not depend on the thread count. A pair in generic position is
 // decided with CGAL's exact predicates (orient3d): its segment's two ends are
 // where an edge of one face crosses the other face, named exactly by that
 // (edge, face) pair; only their coordinates are rounded. Other pairs (a vertex

@@ -95,9 +95,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     // are a third curve type; they join the snapshot's curves.
     double intersectionSeconds = 0.0;
     long long intersectionCurves = 0;
-    // The ray caster's scene depends on the mesh only: it is built on the
-    // other core while the surface intersections are found (the two do not
-    // share data; each is deterministic on its own).
+    // The ray caster's scene depends on the mesh only (see below).
     std::unique_ptr<const RayCaster> rayCaster;
     double sceneSeconds = 0.0;
     auto buildScene = [&] {
@@ -105,66 +103,69 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         rayCaster = std::make_unique<const RayCaster>(mesh);
         sceneSeconds = secondsSince(t0);
     };
-    if (ctx.parameters.getBool(kSurfaceIntersections)) {
-        bool cached = false;
-        std::shared_ptr<const SurfaceIntersectionCurves> found;
-        tbb::parallel_invoke(
-            [&] {
-                const auto t0 = std::chrono::steady_clock::now();
-                found = cachedSurfaceIntersections(s.mesh, &cached);
-                intersectionSeconds = secondsSince(t0);
-            },
-            buildScene);
-        s.setCounter("surface intersections cached", cached ? 1.0 : 0.0);
-        intersectionCurves = static_cast<long long>(found->curves.size());
-        for (size_t i = 0; i < found->curves.size(); ++i) {
-            curves.push_back(found->curves[i]);
-            secondFaces.push_back(i < found->secondFaces.size() ? found->secondFaces[i]
-                                                                : std::vector<Index>{});
-        }
-        if (intersectionCurves > 0)
-            s.notes.push_back(std::to_string(intersectionCurves) +
-                              " surface-intersection curves added to the curves");
-    } else {
-        buildScene();
-    }
-    ctx.checkCancelled();
-
-    // Face orientation: the exact facing (mesh, interpolated) or the VBO
-    // (consistent: the contour generator separates F-VBO from B-VBO faces).
-    const char* orientationField =
-        flavor == VisibilityFlavor::Consistent ? fields::kVbo : fields::kFacing;
-    const Field* orientation = s.field(orientationField);
-    if (!orientation || !orientation->labels())
-        throw std::runtime_error(std::string("visibility: the snapshot has no '") +
-                                 orientationField + "' face field");
-
-    ViewGraphOptions options;
-    options.foldTest = flavor == VisibilityFlavor::Mesh         ? CurtainFoldTest::Convexity
-                       : flavor == VisibilityFlavor::Consistent ? CurtainFoldTest::NearFace
-                                                                : CurtainFoldTest::None;
-    if (flavor == VisibilityFlavor::Consistent)
-        options.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
-    // Exact mesh visibility needs every fold of the mesh as an occluder
-    // (see ViewGraphOptions); interpolated contours keep the tutorial's
-    // simpler model where the curves themselves occlude.
-    options.meshFoldOccluders = flavor != VisibilityFlavor::Interpolated;
-    options.concaveLowerBound = intersectionCurves == 0;
-    if (intersectionCurves > 0 && flavor == VisibilityFlavor::Mesh)
-        s.notes.push_back("the mesh intersects itself: concave contours may be visible there "
-                          "(tutorial theorem B.0.1 assumes no self-intersection), so they get "
-                          "no lower bound and are decided by propagation and rays");
-    const Field* facing = s.field(fields::kFacing);
-    ViewGraphInput input;
-    input.mesh = &mesh;
-    input.curves = &curves;
-    input.secondFaces = &secondFaces;
-    input.faceOrientation = orientation->labels();
-    input.facing = facing && facing->labels() ? facing->labels() : orientation->labels();
+    // The graph needs the surface intersections (they are curves of the
+    // graph) but no ray: the Embree scene is built on the other core while
+    // both are computed (the two tasks share no written data; each is
+    // deterministic on its own, so the result does not depend on the
+    // scheduling).
     ViewGraphBuildStats built;
-    const auto tBuild = std::chrono::steady_clock::now();
-    auto graph = std::make_shared<ViewGraph>(buildViewGraph(input, ctx.camera, options, &built));
-    const double buildSeconds = secondsSince(tBuild);
+    std::shared_ptr<ViewGraph> graph;
+    double buildSeconds = 0.0;
+    auto intersectionsAndGraph = [&] {
+        if (ctx.parameters.getBool(kSurfaceIntersections)) {
+            bool cached = false;
+            const auto t0 = std::chrono::steady_clock::now();
+            const std::shared_ptr<const SurfaceIntersectionCurves> found =
+                cachedSurfaceIntersections(s.mesh, &cached);
+            intersectionSeconds = secondsSince(t0);
+            s.setCounter("surface intersections cached", cached ? 1.0 : 0.0);
+            intersectionCurves = static_cast<long long>(found->curves.size());
+            for (size_t i = 0; i < found->curves.size(); ++i) {
+                curves.push_back(found->curves[i]);
+                secondFaces.push_back(i < found->secondFaces.size() ? found->secondFaces[i]
+                                                                    : std::vector<Index>{});
+            }
+            if (intersectionCurves > 0)
+                s.notes.push_back(std::to_string(intersectionCurves) +
+                                  " surface-intersection curves added to the curves");
+        }
+        ctx.checkCancelled();
+        // Face orientation: the exact facing (mesh, interpolated) or the VBO
+        // (consistent: the contour generator separates F-VBO from B-VBO faces).
+        const char* orientationField =
+            flavor == VisibilityFlavor::Consistent ? fields::kVbo : fields::kFacing;
+        const Field* orientation = s.field(orientationField);
+        if (!orientation || !orientation->labels())
+            throw std::runtime_error(std::string("visibility: the snapshot has no '") +
+                                     orientationField + "' face field");
+
+        ViewGraphOptions options;
+        options.foldTest = flavor == VisibilityFlavor::Mesh         ? CurtainFoldTest::Convexity
+                           : flavor == VisibilityFlavor::Consistent ? CurtainFoldTest::NearFace
+                                                                    : CurtainFoldTest::None;
+        if (flavor == VisibilityFlavor::Consistent)
+            options.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
+        // Exact mesh visibility needs every fold of the mesh as an occluder
+        // (see ViewGraphOptions); interpolated contours keep the tutorial's
+        // simpler model where the curves themselves occlude.
+        options.meshFoldOccluders = flavor != VisibilityFlavor::Interpolated;
+        options.concaveLowerBound = intersectionCurves == 0;
+        if (intersectionCurves > 0 && flavor == VisibilityFlavor::Mesh)
+            s.notes.push_back("the mesh intersects itself: concave contours may be visible there "
+                              "(tutorial theorem B.0.1 assumes no self-intersection), so they get "
+                              "no lower bound and are decided by propagation and rays");
+        const Field* facing = s.field(fields::kFacing);
+        ViewGraphInput input;
+        input.mesh = &mesh;
+        input.curves = &curves;
+        input.secondFaces = &secondFaces;
+        input.faceOrientation = orientation->labels();
+        input.facing = facing && facing->labels() ? facing->labels() : orientation->labels();
+        const auto tBuild = std::chrono::steady_clock::now();
+        graph = std::make_shared<ViewGraph>(buildViewGraph(input, ctx.camera, options, &built));
+        buildSeconds = secondsSince(tBuild);
+    };
+    tbb::parallel_invoke(intersectionsAndGraph, buildScene);
     ctx.checkCancelled();
 
     const RayCaster& rays = *rayCaster;
@@ -273,8 +274,9 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter("surface intersections seconds", intersectionSeconds);
     s.setCounter("view graph seconds", buildSeconds);
     s.setCounter("sweep seconds", built.sweepSeconds);
-    // Built while the surface intersections are found (on the other core
-    // when there is one): this time overlaps "surface intersections seconds".
+    // Built while the surface intersections and the graph are computed (on
+    // the other core when there is one): this time overlaps "surface
+    // intersections seconds" and "view graph seconds".
     s.setCounter("ray scene seconds", sceneSeconds);
     s.setCounter("ray and QI seconds", raySeconds);
     // Its parts: propagation with one ray per component (or the heuristic
