@@ -4,7 +4,8 @@
 // views; on the torus, the bumpy torus and spot, the cusp count per view
 // against the dense ground truth (DenseGroundTruth.h), and the cusp
 // vertices' post-conditions (valence 4, on the contour generator, inserted
-// after every other contour vertex).
+// after every other contour vertex); the |g| bound at C vertices after
+// snapping; and the wiggle options aimed at the faces around cusps.
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
 #include "contours/consistent/JointRootSearch.h"
@@ -122,6 +123,39 @@ std::string checkCuspVertices(const Snapshot& s) {
     return "";
 }
 
+// The whole method with some parameters overridden.
+ViewRun runAll(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
+               const std::vector<std::pair<std::string, ParameterValue>>& overrides) {
+    const Method& m = *findMethod("consistent");
+    ParameterSet p = ParameterSet::defaults(m.parameters);
+    p.set("surface", std::string("catmull-clark"));
+    for (const auto& [name, value] : overrides)
+        p.set(name, value);
+    Runner runner(m, makeInputSnapshot(cage), camera, p);
+    runner.runToEnd();
+    ViewRun r;
+    for (int i = 0; i <= runner.completedPhases(); ++i)
+        r.snapshots.push_back(runner.snapshot(i));
+    return r;
+}
+
+// Inconsistent faces of a snapshot, and those among them with a cusp corner
+// (the inside fan of Fig. 18e and the radial faces at the cusp), from the
+// published fields.
+std::pair<int, int> inconsistentAtCusps(const Snapshot& s) {
+    const auto& consistent = *s.field(fields::kConsistent)->labels();
+    const auto& cusp = *s.field(fields::kCusp)->labels();
+    int all = 0, atCusp = 0;
+    for (Index f = 0; f < s.mesh->faceCount(); ++f) {
+        if (consistent[f])
+            continue;
+        ++all;
+        const Triangle& t = s.mesh->triangle(f);
+        atCusp += cusp[t[0]] || cusp[t[1]] || cusp[t[2]];
+    }
+    return {all, atCusp};
+}
+
 std::shared_ptr<const PolygonMesh> cageFor(const QString& name) {
     if (name == "spot")
         return std::make_shared<const PolygonMesh>(
@@ -230,6 +264,60 @@ private slots:
             QCOMPARE(r.after("cusp-detection").counter("cusps found"), 0.0);
             QCOMPARE(r.after("contour-insertion").counter("cusps"), 0.0);
         }
+    }
+
+    // Contour insertion bisects g to half the root tolerance: the |g|
+    // post-condition is checked against the diagonal of the mesh after the
+    // phase, which snapping shrinks. bob_controlmesh view 10 had a C vertex
+    // at 1.0004 times the checked bound.
+    void rootToleranceSurvivesSnapping() {
+        const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/bob_controlmesh.obj";
+        if (!std::filesystem::exists(path))
+            QSKIP("samples/bob_controlmesh.obj is absent");
+        const auto cage = std::make_shared<const PolygonMesh>(readMesh(path));
+        const Camera camera = Camera::views26(cage->boundingBox(), Viewport{})[10];
+        const ViewRun r = run(cage, camera);
+        const Snapshot& detection = r.after("cusp-detection");
+        const Snapshot& insertion = r.after("contour-insertion");
+        // The case still happens: snapping shrinks the bounding box.
+        QVERIFY(insertion.mesh->boundingBox().diagonal() <
+                detection.mesh->boundingBox().diagonal());
+        QVERIFY(insertion.counter("snapped vertices") > 0.0);
+        for (const Snapshot& s : r.snapshots)
+            QVERIFY2(violations(s).empty(), violations(s).c_str());
+    }
+
+    // wiggle-radial-ends and normal-wiggle-fine-offsets (not in the paper,
+    // off by default) on the torus over the 26 views: every post-condition
+    // holds, and fewer faces stay inconsistent, at cusps and in all (Release,
+    // 26 views: 59 -> 31 in all, 24 -> 8 with a cusp corner; 73 -> 45 and
+    // 38 -> 22 with the radial-side changes of the same session).
+    void cuspFansWithWiggleOptions() {
+        const auto cage = shape("torus", 12);
+        const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+        int totals[2] = {0, 0}, atCusps[2] = {0, 0};
+        for (size_t v = 0; v < all.size(); v += kViewStride)
+            for (int k = 0; k < 2; ++k) {
+                std::vector<std::pair<std::string, ParameterValue>> overrides;
+                if (k == 1)
+                    overrides = {{"wiggle-radial-ends", true}, {"normal-wiggle-fine-offsets", 48}};
+                const ViewRun r = runAll(cage, all[v], overrides);
+                for (const Snapshot& s : r.snapshots)
+                    QVERIFY2(violations(s).empty(),
+                             ("view " + std::to_string(v) + ": " + violations(s)).c_str());
+                const auto [n, atCusp] = inconsistentAtCusps(r.after("normal-wiggle"));
+                totals[k] += n;
+                atCusps[k] += atCusp;
+            }
+        qInfo("torus, final inconsistent faces (with a cusp corner): defaults %d (%d), "
+              "wiggle-radial-ends + normal-wiggle-fine-offsets 48: %d (%d)",
+              totals[0], atCusps[0], totals[1], atCusps[1]);
+#ifdef __OPTIMIZE__
+        QVERIFY(atCusps[1] < atCusps[0]);
+        // At most 3/4 of the defaults' (measured 0.53 and 0.62).
+        QVERIFY2(4 * totals[1] <= 3 * totals[0],
+                 qPrintable(QString("%1 against %2").arg(totals[1]).arg(totals[0])));
+#endif
     }
 
     // Per view, the method's cusp count against the ground truth's, with

@@ -7,6 +7,13 @@
 //
 //   bench_consistent [--meshes-dir DIR] [--mesh NAME]... [--views N]
 //                    [--out stats.csv] [--threads N] [--counters counters.csv]
+//                    [--shape NAME:RES]... [--set PARAM=VALUE]... [--classify]
+//
+// --shape runs a procedural shape (mesh/ProceduralShapes.h, e.g. torus:12,
+// bumpy-torus:12, sphere:8 as in test_consistent_optimization) instead of
+// (or, with --mesh, besides) the files. --set overrides a method parameter
+// (compare a change switched by a parameter on the same tree). --classify
+// sorts the final inconsistent faces by where they lie (see classify()).
 //
 // Columns (means are over the views whose run completed, unless said):
 //   Input                 mesh name (file name without extension)
@@ -50,6 +57,8 @@
 #include "camera/Camera.h"
 #include "contours/Methods.h"
 #include "mesh/MeshReader.h"
+#include "mesh/ProceduralShapes.h"
+#include "pipeline/FieldNames.h"
 #include "pipeline/Runner.h"
 
 #include <CLI/CLI.hpp>
@@ -188,7 +197,67 @@ struct ViewResult {
     std::vector<double> phaseInconsistent; // "inconsistent faces" after it, -1 if absent
     double initialFaces = -1.0, faces = -1.0, inconsistent = -1.0;
     long long violations = 0;
+    std::vector<std::string> violationExamples; // "phase: check: first example"
+    std::vector<long long> classes;             // classify() of the last snapshot
 };
+
+// --classify: the final inconsistent faces sorted by where they lie, from the
+// published fields, first matching class in this order:
+//   inside fan      a corner is a cusp vertex (Fig. 18e: the faces around a
+//                   cusp on its inside side, or a radial face at the cusp)
+//   cusp radial end a corner is the far end of a cusp's radial edge
+//   touching C      a corner is a (non-cusp) C vertex
+//   16f pair        two corners are far ends of radial edges (Fig. 16f)
+//   one radial end  one corner is the far end of a radial edge
+//   other           none of these (away from the contour)
+const char* const kClassNames[] = {"inside fan", "cusp radial end", "touching C",
+                                   "16f pair",   "one radial end",  "other"};
+constexpr int kClassCount = 6;
+
+std::vector<long long> classify(const Snapshot& s) {
+    std::vector<long long> out(kClassCount, 0);
+    const Field* consistentField = s.field(fields::kConsistent);
+    const Field* labelField = s.field(fields::kLabel);
+    const Field* cuspField = s.field(fields::kCusp);
+    const Field* radialField = s.field(fields::kRadialEdge);
+    if (!s.mesh || !consistentField || !labelField || !cuspField || !radialField)
+        return out;
+    const TriangleMesh& mesh = *s.mesh;
+    const auto& consistent = *consistentField->labels();
+    const auto& label = *labelField->labels();
+    const auto& cusp = *cuspField->labels();
+    const auto& radial = *radialField->labels();
+    // Far ends of radial edges (the non-C end), and those of a cusp's.
+    std::vector<char> end(static_cast<size_t>(mesh.vertexCount()), 0),
+        cuspEnd(static_cast<size_t>(mesh.vertexCount()), 0);
+    for (Index e = 0; e < mesh.edgeCount(); ++e) {
+        if (!radial[static_cast<size_t>(e)])
+            continue;
+        const Index h = mesh.edgeHalfedge(e);
+        Index p = mesh.from(h), r = mesh.to(h);
+        if (label[static_cast<size_t>(r)] == 0)
+            std::swap(p, r);
+        end[static_cast<size_t>(r)] = 1;
+        if (cusp[static_cast<size_t>(p)])
+            cuspEnd[static_cast<size_t>(r)] = 1;
+    }
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+        if (consistent[static_cast<size_t>(f)])
+            continue;
+        int hasCusp = 0, hasCuspEnd = 0, hasC = 0, ends = 0;
+        for (Index v : mesh.triangle(f)) {
+            const auto i = static_cast<size_t>(v);
+            hasCusp += cusp[i];
+            hasCuspEnd += cuspEnd[i];
+            hasC += label[i] == 0;
+            ends += end[i];
+        }
+        const int k = hasCusp ? 0 : hasCuspEnd ? 1 : hasC ? 2 : ends >= 2 ? 3 : ends ? 4 : 5;
+        ++out[static_cast<size_t>(k)];
+    }
+    return out;
+}
+bool gClassify = false;
 
 // FNV-1a over the mesh's positions (bits) and faces: equal digests mean the
 // same mesh, to the bit.
@@ -248,12 +317,19 @@ ViewResult runView(const Method& method, const Snapshot& input, const Camera& ca
         r.phaseSeconds.push_back(s.phaseSeconds);
         r.phaseInconsistent.push_back(s.counter("inconsistent faces"));
         r.violations += s.invariantViolations();
+        for (const InvariantCheck& c : s.invariants)
+            if (c.violations > 0)
+                r.violationExamples.push_back(s.phaseName + ": " + c.name + " (" +
+                                              std::to_string(c.violations) + "x), first " +
+                                              c.firstExample);
         if (r.initialFaces < 0.0)
             r.initialFaces = s.counter("initial faces");
     }
     const Snapshot& last = runner.current();
     r.faces = last.counter("faces", last.mesh ? last.mesh->faceCount() : -1.0);
     r.inconsistent = last.counter("inconsistent faces");
+    if (gClassify)
+        r.classes = classify(last);
     return r;
 }
 
@@ -282,7 +358,9 @@ std::string cell(std::optional<double> x, const char* format = "%.6g") {
 struct MeshSummary {
     std::string name;
     int views = 0, completed = 0, zeroViolation = 0, consistent = 0;
+    int aboveTarget = 0; // completed views above 0.05 % inconsistent (issue 4)
     long long violations = 0;
+    std::vector<long long> classes = std::vector<long long>(kClassCount, 0);
     Mean inputFaces, outputFaces, runtime, phases, checks;
     std::vector<Mean> phaseSeconds, phaseInconsistent;
     std::optional<double> maxInconsistentPercent;
@@ -347,14 +425,13 @@ std::string joinCsv(const std::vector<std::string>& cells) {
 }
 
 MeshSummary runMesh(const Method& method, const ParameterSet& parameters, const std::string& name,
-                    const std::filesystem::path& file, int views) {
+                    const std::shared_ptr<const PolygonMesh>& cage, int views) {
     MeshSummary m;
     m.name = name;
     m.phaseSeconds.resize(method.phases.size());
     m.phaseInconsistent.resize(method.phases.size());
     m.peakIsPerMesh = resetPeakRss();
     const auto start = Clock::now();
-    const auto cage = std::make_shared<const PolygonMesh>(readMesh(file.string()));
     const Snapshot input = makeInputSnapshot(cage);
     const std::vector<Camera> cameras = Camera::views26(input.mesh->boundingBox(), Viewport{});
     m.views = std::min<int>(views, static_cast<int>(cameras.size()));
@@ -386,18 +463,36 @@ MeshSummary runMesh(const Method& method, const ParameterSet& parameters, const 
             if (percent >= 0)
                 m.maxInconsistentPercent =
                     std::max(m.maxInconsistentPercent.value_or(0.0), percent);
+            m.aboveTarget += percent > 0.05;
         }
+        for (size_t k = 0; k < r.classes.size(); ++k)
+            m.classes[k] += r.classes[k];
         std::printf("  view %2d: %s, %6.2f s, %8.0f faces, %6.0f inconsistent (%.3f%%), %lld "
                     "violations%s%s\n",
                     v, r.completed ? "completed" : "FAILED", r.totalSeconds, r.faces,
                     r.inconsistent, percent, r.violations, r.completed ? "" : ": ",
                     r.error.c_str());
+        for (const std::string& example : r.violationExamples)
+            std::printf("    violated after %s\n", example.c_str());
+        if (!r.classes.empty()) {
+            std::printf("    classes:");
+            for (int k = 0; k < kClassCount; ++k)
+                std::printf(" %s %lld%s", kClassNames[k], r.classes[static_cast<size_t>(k)],
+                            k + 1 < kClassCount ? "," : "\n");
+        }
         std::fflush(stdout);
     }
     m.peakRssMib = static_cast<double>(statusKb("VmHWM")) / 1024.0;
-    std::printf("  %s: %.1f s for %d views, peak RSS %.1f MiB%s\n", name.c_str(),
-                secondsSince(start), m.views, m.peakRssMib,
-                m.peakIsPerMesh ? "" : " (process peak so far: clear_refs refused)");
+    std::printf("  %s: %.1f s for %d views, peak RSS %.1f MiB%s; %d views above 0.05 %% "
+                "inconsistent\n",
+                name.c_str(), secondsSince(start), m.views, m.peakRssMib,
+                m.peakIsPerMesh ? "" : " (process peak so far: clear_refs refused)", m.aboveTarget);
+    if (gClassify) {
+        std::printf("  %s, final inconsistent faces over %d views:", name.c_str(), m.views);
+        for (int k = 0; k < kClassCount; ++k)
+            std::printf(" %s %lld%s", kClassNames[k], m.classes[static_cast<size_t>(k)],
+                        k + 1 < kClassCount ? "," : "\n");
+    }
     return m;
 }
 
@@ -443,6 +538,7 @@ int main(int argc, char** argv) {
     int views = 26;
     int threads = 0;
     std::string outPath, countersPath;
+    std::vector<std::string> shapes, settings;
     app.add_option("--meshes-dir", meshesDir, "Folder of the meshes")->capture_default_str();
     app.add_option("--mesh", meshes,
                    "Mesh name (file name without extension), repeat to choose several; default: "
@@ -460,8 +556,16 @@ int main(int argc, char** argv) {
                    "and mesh digest per view to this CSV file (for diffing two builds)");
     app.add_option("--published", publishedPath, "ConTesse's published statistics (CSV)")
         ->capture_default_str();
+    app.add_option("--shape", shapes,
+                   "Procedural shape NAME:RESOLUTION (mesh/ProceduralShapes.h), e.g. torus:12; "
+                   "repeat for several; without --mesh only the shapes run");
+    app.add_option("--set", settings,
+                   "Method parameter NAME=VALUE overriding its default; repeat for several");
+    app.add_flag("--classify", gClassify,
+                 "Sort the final inconsistent faces by where they lie (inside fan, cusp radial "
+                 "end, touching C, 16f pair, one radial end, other) per view and per mesh");
     CLI11_PARSE(app, argc, argv);
-    if (meshes.empty())
+    if (meshes.empty() && shapes.empty())
         meshes = kDefaultMeshes;
 
     std::unique_ptr<tbb::global_control> limit;
@@ -473,7 +577,17 @@ int main(int argc, char** argv) {
         const Method* method = findMethod("consistent");
         if (!method)
             throw std::runtime_error("the consistent method is not registered");
-        const ParameterSet parameters = ParameterSet::defaults(method->parameters);
+        ParameterSet parameters = ParameterSet::defaults(method->parameters);
+        for (const std::string& setting : settings) {
+            const size_t eq = setting.find('=');
+            const std::string name = setting.substr(0, eq);
+            const auto spec = std::find_if(method->parameters.begin(), method->parameters.end(),
+                                           [&](const ParameterSpec& p) { return p.name == name; });
+            if (eq == std::string::npos || spec == method->parameters.end())
+                throw std::runtime_error("--set " + setting + ": no such parameter");
+            parameters.set(name, parseParameter(*spec, setting.substr(eq + 1)));
+            std::printf("bench_consistent: %s\n", setting.c_str());
+        }
         const std::map<std::string, double> published = readPublished(publishedPath);
         if (published.empty())
             std::printf("bench_consistent: no published statistics read from %s; the ConTesse "
@@ -505,16 +619,30 @@ int main(int argc, char** argv) {
         std::printf("\n");
 
         std::vector<MeshSummary> results;
-        for (const std::string& name : meshes) {
-            const std::optional<std::filesystem::path> file = findMeshFile(meshesDir, name);
-            if (!file) {
-                std::printf("\nskipping %s: no %s/%s.{obj,off,ply}\n", name.c_str(),
-                            meshesDir.c_str(), name.c_str());
-                continue;
+        std::vector<std::string> inputs = meshes;
+        for (const std::string& shape : shapes)
+            inputs.push_back("shape:" + shape);
+        for (const std::string& name : inputs) {
+            std::shared_ptr<const PolygonMesh> cage;
+            if (name.rfind("shape:", 0) == 0) {
+                const std::string spec = name.substr(6);
+                const size_t colon = spec.find(':');
+                const int resolution =
+                    colon == std::string::npos ? 12 : std::stoi(spec.substr(colon + 1));
+                cage = std::make_shared<const PolygonMesh>(
+                    makeProceduralShape(spec.substr(0, colon), resolution));
+            } else {
+                const std::optional<std::filesystem::path> file = findMeshFile(meshesDir, name);
+                if (!file) {
+                    std::printf("\nskipping %s: no %s/%s.{obj,off,ply}\n", name.c_str(),
+                                meshesDir.c_str(), name.c_str());
+                    continue;
+                }
+                cage = std::make_shared<const PolygonMesh>(readMesh(file->string()));
             }
             MeshSummary m;
             try {
-                m = runMesh(*method, parameters, name, *file, views);
+                m = runMesh(*method, parameters, name, cage, views);
             } catch (const std::exception& e) {
                 std::printf("\nskipping %s: %s\n", name.c_str(), e.what());
                 continue;

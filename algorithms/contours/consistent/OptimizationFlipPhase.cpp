@@ -11,8 +11,44 @@ namespace contour::consistent {
 namespace {
 
 struct FlipStats {
-    long long rejectedFold = 0, rejectedTiny = 0, rejectedLabels = 0;
+    long long rejectedFold = 0, rejectedTiny = 0, rejectedLabels = 0, pairs = 0;
 };
+
+// The flip of a-b may be considered at all: untagged, interior, c-d not
+// an edge yet, no cusp whose valence is locked (see flipBest).
+bool flipAllowed(const ConsistentMesh& m, Index a, Index b, bool cuspEdits) {
+    if (m.edgeTag(a, b) != kNoTag || m.faceOfHalfedge(a, b) == kInvalidIndex ||
+        m.faceOfHalfedge(b, a) == kInvalidIndex)
+        return false;
+    const auto [c, d] = m.oppositeVertices(a, b);
+    if (c == d || m.faceOfHalfedge(c, d) != kInvalidIndex ||
+        m.faceOfHalfedge(d, c) != kInvalidIndex)
+        return false;
+    for (Index w : {a, b, c, d})
+        if (m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w)))
+            return false;
+    return true;
+}
+
+// The flipped faces in `after` (scored `trial`) pass §6.4's rules against
+// the faces they replace in `before`: no triangle below `minQuality`, defined
+// VBOs and no degenerate CC edge, no fold; the reason is counted when not.
+bool flipResultAcceptable(const LocalEdit& before, const LocalEdit& after, const LocalScore& trial,
+                          double minQuality, FlipStats& st) {
+    if (trial.minQuality < minQuality) {
+        ++st.rejectedTiny;
+        return false;
+    }
+    if (!after.labelsValid()) {
+        ++st.rejectedLabels;
+        return false;
+    }
+    if (!after.parameterValid() || after.turnedOver() > before.turnedOver()) {
+        ++st.rejectedFold;
+        return false;
+    }
+    return true;
+}
 
 // §6.4: try the three edges of inconsistent face f; apply the flip that
 // removes the most inconsistent faces of the two it rewrites, ties to the
@@ -28,23 +64,13 @@ bool flipBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int
     std::array<Index, 2> bestEdge{kInvalidIndex, kInvalidIndex};
     for (int i = 0; i < 3; ++i) {
         const Index a = t[i], b = t[(i + 1) % 3];
-        if (m.edgeTag(a, b) != kNoTag)
-            continue;
-        const Index f0 = m.faceOfHalfedge(a, b), f1 = m.faceOfHalfedge(b, a);
-        if (f0 == kInvalidIndex || f1 == kInvalidIndex)
-            continue;
-        const auto [c, d] = m.oppositeVertices(a, b);
-        if (c == d || m.faceOfHalfedge(c, d) != kInvalidIndex ||
-            m.faceOfHalfedge(d, c) != kInvalidIndex)
-            continue;
         // A flip changes the valence of all four vertices; a cusp keeps the
         // valence 4 of Fig. 18d until radial edges are added around it
         // (Fig. 18e), or always with optimization-cusp-edits off.
-        bool locked = false;
-        for (Index w : {a, b, c, d})
-            locked = locked || (m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w)));
-        if (locked)
+        if (!flipAllowed(m, a, b, cuspEdits))
             continue;
+        const Index f0 = m.faceOfHalfedge(a, b), f1 = m.faceOfHalfedge(b, a);
+        const auto [c, d] = m.oppositeVertices(a, b);
         before.clear();
         before.addFaces({f0, f1});
         const LocalScore now = before.score();
@@ -54,24 +80,96 @@ bool flipBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int
         LocalScore trial = after.score();
         // Compare improvements across the three candidate edges.
         trial.inconsistent -= now.inconsistent;
-        if (trial.inconsistent >= 0 || (bestEdge[0] != kInvalidIndex && !betterScore(trial, best)))
+        if (trial.inconsistent >= 0 ||
+            (bestEdge[0] != kInvalidIndex && !betterScore(trial, best)) ||
+            !flipResultAcceptable(before, after, trial, minQuality, st))
             continue;
-        if (trial.minQuality < minQuality) {
-            ++st.rejectedTiny;
-            continue;
-        }
-        if (!after.labelsValid()) {
-            ++st.rejectedLabels;
-            continue;
-        }
-        if (!after.parameterValid() || after.turnedOver() > before.turnedOver()) {
-            ++st.rejectedFold;
-            continue;
-        }
         best = trial;
         bestEdge = {a, b};
     }
     return bestEdge[0] != kInvalidIndex && m.flipEdge(bestEdge[0], bestEdge[1], phase);
+}
+
+// Two successive flips around inconsistent face f, tried when no single
+// flip helps (parameter optimization-flip-pairs, off by default: §6.4 only
+// tries "any of the three edges"): the first flips an edge a-b of f (faces
+// a-d-c and b-c-d), the second an outer edge u-w of one of those two faces
+// with the mesh face across it. Near the contour a face whose far vertex
+// lies on the wrong side of the chord of its near edge in the image
+// (Fig. 13, 16f) often has no single improving flip but one through its
+// neighbour. Same acceptance as flipBest, judged on the three final faces
+// against the three they replace. Both flips are evaluated before the mesh
+// changes.
+bool flipPairBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int phase,
+                  FlipStats& st) {
+    const Triangle t = m.face(f);
+    LocalEdit before(m), after(m);
+    LocalScore best;
+    std::array<Index, 4> bestEdges{kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
+    for (int i = 0; i < 3; ++i) {
+        const Index a = t[i], b = t[(i + 1) % 3];
+        if (!flipAllowed(m, a, b, cuspEdits))
+            continue;
+        const Index f0 = m.faceOfHalfedge(a, b), f1 = m.faceOfHalfedge(b, a);
+        const auto [c, d] = m.oppositeVertices(a, b);
+        const Triangle n0{a, d, c}, n1{b, c, d};
+        for (int k = 0; k < 2; ++k) {
+            const Triangle& tk = k == 0 ? n0 : n1;
+            const Triangle& other = k == 0 ? n1 : n0;
+            for (int j = 0; j < 3; ++j) {
+                const Index u = tk[j], w = tk[(j + 1) % 3];
+                if ((u == c && w == d) || (u == d && w == c))
+                    continue;
+                // Outer edge of the quad a-c-b-d: its mesh face across.
+                if (m.edgeTag(u, w) != kNoTag)
+                    continue;
+                const Index g = m.faceOfHalfedge(w, u);
+                if (g == kInvalidIndex || g == f0 || g == f1)
+                    continue;
+                const Index x = tk[(j + 2) % 3];
+                Index y = kInvalidIndex;
+                for (Index z : m.face(g))
+                    if (z != u && z != w)
+                        y = z;
+                if (y == kInvalidIndex || y == x || y == a || y == b || y == c || y == d ||
+                    m.faceOfHalfedge(x, y) != kInvalidIndex ||
+                    m.faceOfHalfedge(y, x) != kInvalidIndex)
+                    continue;
+                bool locked = false;
+                for (Index v : {a, b, c, d, y})
+                    locked = locked || (m.vertex(v).cusp && (!cuspEdits || !onRadialEdge(m, v)));
+                if (locked)
+                    continue;
+                before.clear();
+                before.addFaces({f0, f1, g});
+                const LocalScore now = before.score();
+                after.clear();
+                after.addFace(other);
+                // Faces u-w-x and w-u-y become u-y-x and w-x-y.
+                after.addFace({u, y, x});
+                after.addFace({w, x, y});
+                LocalScore trial = after.score();
+                trial.inconsistent -= now.inconsistent;
+                if (trial.inconsistent >= 0 ||
+                    (bestEdges[0] != kInvalidIndex && !betterScore(trial, best)) ||
+                    !flipResultAcceptable(before, after, trial, minQuality, st))
+                    continue;
+                best = trial;
+                bestEdges = {a, b, u, w};
+            }
+        }
+    }
+    if (bestEdges[0] == kInvalidIndex)
+        return false;
+    const auto [c, d] = m.oppositeVertices(bestEdges[0], bestEdges[1]);
+    if (!m.flipEdge(bestEdges[0], bestEdges[1], phase))
+        return false;
+    if (!m.flipEdge(bestEdges[2], bestEdges[3], phase)) {
+        m.flipEdge(c, d, phase); // not expected (checked above): back to a-b
+        return false;
+    }
+    ++st.pairs;
+    return true;
 }
 
 void runOptimizationFlips(const PhaseContext& ctx, Snapshot& s) {
@@ -82,14 +180,18 @@ void runOptimizationFlips(const PhaseContext& ctx, Snapshot& s) {
     const bool cuspEdits = ctx.parameters.getBool("optimization-cusp-edits");
     OptimizationTally tally;
     FlipStats st;
-    sweepInconsistent(ctx, m, maxSweeps, false, tally,
-                      [&](Index f) { return flipBest(m, f, minQuality, cuspEdits, phase, st); });
+    const bool pairs = ctx.parameters.getBool("optimization-flip-pairs");
+    sweepInconsistent(ctx, m, maxSweeps, false, tally, [&](Index f) {
+        return flipBest(m, f, minQuality, cuspEdits, phase, st) ||
+               (pairs && flipPairBest(m, f, minQuality, cuspEdits, phase, st));
+    });
     publish(s, m);
     publishTally(s, tally, "faces", "flip-max-sweeps");
     s.setCounter("flips", static_cast<double>(tally.accepted));
     s.setCounter("flips rejected (tiny triangle)", static_cast<double>(st.rejectedTiny));
     s.setCounter("flips rejected (fold)", static_cast<double>(st.rejectedFold));
     s.setCounter("flips rejected (VBO or degenerate edge)", static_cast<double>(st.rejectedLabels));
+    s.setCounter("two-flip sequences", static_cast<double>(st.pairs));
 }
 
 std::vector<InvariantCheck> checkOptimizationFlips(const PhaseContext& ctx, const Snapshot& s) {
@@ -128,6 +230,17 @@ void addOptimizationFlipPhase(Method& m) {
          "touches a cusp's valence.",
          ParameterType::Bool,
          true,
+         0,
+         0,
+         {}});
+    m.parameters.push_back(
+        {"optimization-flip-pairs",
+         "Flip: two-flip sequences",
+         "When no single flip of an inconsistent face's edges helps, also try a flip followed "
+         "by a flip of an outer edge of one of the two new faces (off: §6.4 tries only \"any "
+         "of the three edges\" of the face).",
+         ParameterType::Bool,
+         false,
          0,
          0,
          {}});

@@ -58,9 +58,24 @@ Index radialPartner(const ConsistentMesh& m, Index v) {
     return p;
 }
 
+// The C vertex at the other end of each radial edge at v (v is their far
+// end), or nullopt when v also has a tag that is not radial.
+std::optional<std::vector<Index>> radialPartners(const ConsistentMesh& m, Index v) {
+    std::vector<Index> out;
+    for (Index w : m.neighbours(v)) {
+        const int tag = m.edgeTag(v, w);
+        if (tag == kNoTag)
+            continue;
+        if (tag != kRadialEdge || m.vertex(w).label != VertexLabel::Contour)
+            return std::nullopt;
+        out.push_back(w);
+    }
+    return out;
+}
+
 struct WiggleStats {
     long long skipped = 0, cancelledSamples = 0, rejected = 0, radialMoved = 0,
-              radialUnconverged = 0;
+              radialUnconverged = 0, radialFreed = 0, radialTagsDropped = 0;
 };
 
 // The zero of h_p on the parameter segment a-b (h_p(a), h_p(b) of opposite
@@ -102,7 +117,35 @@ struct WiggleSettings {
     Lattice grid;
     double radialTolerance = 0.0;
     int radialIterations = 100;
+    bool freeRadialEnds = false; // wiggle-radial-ends
 };
+
+// The radial edges p-v that v at `position` no longer ends (|h_p| above the
+// tolerance): they lose their tag when v moves there.
+std::vector<Index> droppedRadialEdges(const ConsistentMesh& m, const std::vector<Index>& partners,
+                                      const Vec3& position, double tolerance) {
+    std::vector<Index> out;
+    for (Index p : partners)
+        if (!(std::abs(radialPlaneDistance(m.camera(), m.vertex(p), position)) <= tolerance))
+            out.push_back(p);
+    return out;
+}
+
+// Dropping those tags keeps the post-condition of Fig. 18d-e: a cusp that
+// loses a radial edge keeps another one (or has valence 4 again).
+bool cuspsKeepRadialEdge(const ConsistentMesh& m, Index v, const std::vector<Index>& dropped) {
+    for (Index p : dropped) {
+        if (!m.vertex(p).cusp)
+            continue;
+        bool other = false;
+        for (Index w : m.neighbours(p))
+            other = other || (w != v && (m.edgeTag(p, w) & kRadialEdge) &&
+                              std::find(dropped.begin(), dropped.end(), w) == dropped.end());
+        if (!other && m.neighbours(p).size() != 4)
+            return false;
+    }
+    return true;
+}
 
 // Moves v to the sample of its one-ring that leaves the fewest inconsistent
 // faces around it (strictly fewer than now), ties to the largest minimum
@@ -116,11 +159,26 @@ struct WiggleSettings {
 // defined, make no degenerate CC edge, turn no face over in 3D and satisfy
 // appendix C (shiftable(): no parameter fold, no CCC, no "X", interpolation
 // possible).
-bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, WiggleStats& st) {
+//
+// `freeRadial` (wiggle-radial-ends, not in the paper): v is the far end of
+// one or more radial edges and its constrained move above found nothing; it
+// now samples its whole one-ring like any F or B vertex, and the radial
+// edges whose plane it leaves lose their tag (those faces are no longer
+// radial triangles; a cusp keeps at least one radial edge or valence 4).
+bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, WiggleStats& st,
+            bool freeRadial = false) {
     const MeshVertex current = m.vertex(v);
-    const Index partner = radialPartner(m, v);
+    std::vector<Index> partners;
+    if (freeRadial) {
+        const std::optional<std::vector<Index>> found = radialPartners(m, v);
+        if (!found || found->empty() || current.label == VertexLabel::Contour || current.cusp ||
+            m.isBoundaryVertex(v))
+            return false;
+        partners = *found;
+    }
+    const Index partner = freeRadial ? kInvalidIndex : radialPartner(m, v);
     if (current.label == VertexLabel::Contour || current.cusp || m.isBoundaryVertex(v) ||
-        (onTaggedEdge(m, v) && partner == kInvalidIndex)) {
+        (!freeRadial && onTaggedEdge(m, v) && partner == kInvalidIndex)) {
         ++st.skipped;
         return false;
     }
@@ -178,6 +236,9 @@ bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, Wi
         for (size_t i = 0; ok && i < star.size(); ++i)
             ok = turned[i] || !edit.turnedOver(edit.faces()[i]);
         ok = ok && shiftable(m, v, x.preimage, x.label);
+        ok = ok && (!freeRadial ||
+                    cuspsKeepRadialEdge(
+                        m, v, droppedRadialEdges(m, partners, x.position, set.radialTolerance)));
         if (!ok) {
             ++st.rejected;
             return;
@@ -276,6 +337,13 @@ bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, Wi
     MeshVertex chosen = m.evaluate(best->preimage);
     chosen.provenance = Provenance::Wiggled;
     chosen.phase = phase;
+    if (freeRadial) {
+        for (Index q : droppedRadialEdges(m, partners, chosen.position, set.radialTolerance)) {
+            m.setEdgeTag(v, q, m.edgeTag(v, q) & ~kRadialEdge);
+            ++st.radialTagsDropped;
+        }
+        ++st.radialFreed;
+    }
     m.setVertex(v, chosen, phase);
     st.radialMoved += p != nullptr;
     return true;
@@ -288,11 +356,14 @@ void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
     set.grid = lattice(ctx.parameters.getInt("wiggle-samples"));
     set.radialTolerance = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
     set.radialIterations = ctx.parameters.getInt("radial-root-max-iterations");
+    set.freeRadialEnds = ctx.parameters.getBool("wiggle-radial-ends");
     const int maxSweeps = ctx.parameters.getInt("wiggle-max-sweeps");
     OptimizationTally tally;
     WiggleStats st;
-    sweepInconsistent(ctx, m, maxSweeps, true, tally,
-                      [&](Index v) { return wiggle(m, v, set, phase, st); });
+    sweepInconsistent(ctx, m, maxSweeps, true, tally, [&](Index v) {
+        return wiggle(m, v, set, phase, st) ||
+               (set.freeRadialEnds && wiggle(m, v, set, phase, st, true));
+    });
     publish(s, m);
     publishTally(s, tally, "vertices", "wiggle-max-sweeps");
     s.setCounter("samples per face", static_cast<double>(set.grid.points()));
@@ -305,6 +376,10 @@ void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("samples rejected (fold, appendix C, degenerate edge)",
                  static_cast<double>(st.rejected));
     s.setCounter("samples without a chart", static_cast<double>(st.cancelledSamples));
+    s.setCounter("radial-edge ends moved off their radial plane (wiggle-radial-ends)",
+                 static_cast<double>(st.radialFreed));
+    s.setCounter("radial edge tags dropped (wiggle-radial-ends)",
+                 static_cast<double>(st.radialTagsDropped));
 }
 
 std::vector<InvariantCheck> checkParameterWiggle(const PhaseContext& ctx, const Snapshot& s) {
@@ -333,6 +408,19 @@ void addParameterWigglePhase(Method& m) {
                             1,
                             10000,
                             {}});
+    m.parameters.push_back(
+        {"wiggle-radial-ends",
+         "Wiggle: free radial ends",
+         "Not in the paper (§6.4 does not say how the wiggle treats radial edges): off keeps "
+         "the far end of a single radial edge on its radial plane and never moves the end of "
+         "two (the §6.3 radial triangles stay). On: when that finds nothing, the end also "
+         "samples its whole one-ring like any F or B vertex, and the radial edges whose plane "
+         "it leaves lose their tag (a cusp keeps one radial edge, or valence 4).",
+         ParameterType::Bool,
+         false,
+         0,
+         0,
+         {}});
     m.phases.push_back(
         {"parameter-wiggle",
          "§6.4 Vertex Wiggling in Parameter Space: every F or B vertex of an inconsistent "
