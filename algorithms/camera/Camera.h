@@ -16,6 +16,7 @@ struct Viewport {
     int width = 800;
     int height = 600;
     double aspect() const { return static_cast<double>(width) / height; }
+    bool operator==(const Viewport&) const = default;
 };
 
 struct ProjectedPoint {
@@ -34,6 +35,8 @@ public:
     Viewport viewport;
 
     bool isOrthographic() const { return projection == Projection::Orthographic; }
+    // Exactly the same camera (every field equal).
+    bool operator==(const Camera&) const = default;
 
     // Unit vector from the eye towards the target.
     Vec3 forward() const;

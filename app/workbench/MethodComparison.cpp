@@ -11,14 +11,6 @@ namespace contour {
 
 namespace {
 
-bool sameCamera(const std::optional<Camera>& a, const std::optional<Camera>& b) {
-    if (!a || !b)
-        return a.has_value() == b.has_value();
-    return a->projection == b->projection && a->eye == b->eye && a->target == b->target &&
-           a->up == b->up && a->fovYDegrees == b->fovYDegrees && a->orthoHeight == b->orthoHeight &&
-           a->viewport.width == b->viewport.width && a->viewport.height == b->viewport.height;
-}
-
 // The primary's values of the parameters `other` has too.
 ParameterSet sharedParameters(const Method& other, const ParameterSet& primary) {
     ParameterSet shared;
@@ -54,7 +46,7 @@ void MethodComparison::setPrimary(const std::optional<Snapshot>& input,
         other ? sharedParameters(*other, primaryParameters) : ParameterSet{};
     const bool sameInput =
         input.has_value() == input_.has_value() && (!input || input->mesh == input_->mesh);
-    if (sameInput && sameCamera(camera, camera_) && shared.values() == shared_.values())
+    if (sameInput && camera == camera_ && shared.values() == shared_.values())
         return;
     input_ = input;
     camera_ = camera;
