@@ -224,9 +224,10 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         ->type_name("FILE")
         ->group(outputGroup);
     app.add_option("--snapshot-dir", o.snapshotDir,
-                   "Write per view the diagnostic snapshot the workbench exports, without its "
-                   "PNG images: report.json, view-2d.svg, mesh.ply, session.cwsession, into DIR "
-                   "(created if missing; with several views into DIR/view00, ...).")
+                   "Write per view the diagnostic snapshot the workbench exports: report.json, "
+                   "view-2d.svg, mesh.ply, session.cwsession, and with a display (xvfb-run -a "
+                   "will do) view-3d.png and view-2d.png drawn by the workbench's views, into "
+                   "DIR (created if missing; with several views into DIR/view00, ...).")
         ->type_name("DIR")
         ->group(outputGroup);
     app.add_option("--ply", o.plyPath,

@@ -185,9 +185,10 @@ void addNormalWigglePhase(Method& m) {
          "Normal wiggle: fine offsets",
          "Not in the paper (§6.4 samples 100 offsets evenly): also try this many offsets of "
          "each sign below the even step, log-uniformly over six decades, for the small "
-         "displacements that a cusp's thin inside fan (Fig. 18e) needs. 0 (default): off.",
+         "displacements that a cusp's thin inside fan (Fig. 18e) needs. Default 48; 0: the "
+         "paper's even offsets only.",
          ParameterType::Int,
-         0,
+         48,
          0,
          1000,
          {}});
