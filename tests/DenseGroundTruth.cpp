@@ -384,6 +384,30 @@ GroundTruth DenseGroundTruth::compute(const Camera& camera) const {
     return truth;
 }
 
+int imageCrossings(const GroundTruth& truth, const Camera& camera) {
+    std::vector<std::array<Vec2, 2>> segments;
+    for (const GroundTruthLoop& loop : truth.loops) {
+        const size_t n = loop.points.size();
+        for (size_t k = 0; k + (loop.closed ? 0 : 1) < n; ++k)
+            segments.push_back({camera.project(loop.points[k]).pixel,
+                                camera.project(loop.points[(k + 1) % n]).pixel});
+    }
+    const auto orient = [](const Vec2& a, const Vec2& b, const Vec2& p) {
+        return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
+    };
+    // Segments sharing an end point never cross properly: no adjacency test
+    // needed. Quadratic, for the few thousand segments of a test view.
+    int crossings = 0;
+    for (size_t i = 0; i < segments.size(); ++i)
+        for (size_t j = i + 1; j < segments.size(); ++j) {
+            const auto& [a, b] = segments[i];
+            const auto& [p, q] = segments[j];
+            crossings +=
+                orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
+        }
+    return crossings;
+}
+
 std::vector<MethodLoop> methodLoops(const Snapshot& snapshot) {
     std::vector<MethodLoop> loops;
     if (!snapshot.curves)

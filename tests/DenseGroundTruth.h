@@ -67,6 +67,13 @@ struct GroundTruth {
     int openLoops() const { return static_cast<int>(loops.size()) - closedLoops(); }
 };
 
+// The image-space crossings of the ground truth's contour (all loops, visible
+// or not, each with itself and the others): pairs of projected lattice
+// segments that cross properly, i.e. the T-junctions of an exact view graph
+// (tutorial ch. 4). Crossings closer than a lattice step to a cusp may be
+// missed, like the cusps themselves.
+int imageCrossings(const GroundTruth& truth, const Camera& camera);
+
 // Samples the view-independent part (positions and unit normals at every
 // lattice point) once; compute() then extracts the contour for any camera.
 class DenseGroundTruth {

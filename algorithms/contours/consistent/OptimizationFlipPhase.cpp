@@ -91,10 +91,10 @@ bool flipBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int
 }
 
 // Two successive flips around inconsistent face f, tried when no single
-// flip helps (parameter optimization-flip-pairs, off by default: §6.4 only
-// tries "any of the three edges"; on, it halves the faces left
-// inconsistent but changed the view graph of test_visibility's grazing
-// torus: its 4 T-junctions, found by the interpolated method too, vanish): the first flips an edge
+// flip helps (parameter optimization-flip-pairs, on by default; off, §6.4
+// as written, tries "any of the three edges"; on halves the faces left
+// inconsistent, and on test_visibility's grazing torus removes 4 spurious
+// T-junctions that the dense ground truth does not have): the first flips an edge
 // a-b of f (faces a-d-c and b-c-d), the second an outer edge u-w of one of those two faces with the
 // mesh face across it. Near the contour a face whose far vertex lies on the wrong side of the chord
 // of its near edge in the image (Fig. 13, 16f) often has no single improving flip but one through
@@ -238,10 +238,10 @@ void addOptimizationFlipPhase(Method& m) {
          "Flip: two-flip sequences",
          "When no single flip of an inconsistent face's edges helps, also try a flip followed "
          "by a flip of an outer edge of one of the two new faces. Not in the paper (off: §6.4 "
-         "as written, which tries only \"any of the three edges\" of the face); on halves "
-         "the faces left inconsistent but can reroute the contour (README).",
+         "as written, which tries only \"any of the three edges\" of the face); on (default) "
+         "halves the faces left inconsistent.",
          ParameterType::Bool,
-         false,
+         true,
          0,
          0,
          {}});
