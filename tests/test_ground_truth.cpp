@@ -37,6 +37,14 @@ std::shared_ptr<const PolygonMesh> spotCage() {
     return sampleCage("spot_control_mesh.obj");
 }
 
+// The cage of a comparison row: a sample by name (spot, bob), else a
+// procedural shape at `resolution`.
+std::shared_ptr<const PolygonMesh> comparisonCage(const QString& name, int resolution) {
+    return name == "spot"  ? spotCage()
+           : name == "bob" ? sampleCage("bob_controlmesh.obj")
+                           : shape(name.toStdString(), resolution);
+}
+
 } // namespace
 
 class TestGroundTruth : public QObject {
@@ -252,12 +260,8 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     QFETCH(int, minLoopsPercent);
     QFETCH(int, minCuspsPercent);
     QFETCH(int, minFacesPercent);
-    const auto cage = name == "spot"  ? spotCage()
-                      : name == "bob" ? sampleCage("bob_controlmesh.obj")
-                                      : shape(name.toStdString(), resolution);
-    GroundTruthOptions options;
-    options.samples = kComparisonSamples;
-    const DenseGroundTruth dense(catmullClark(cage), options);
+    const auto cage = comparisonCage(name, resolution);
+    const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
     ParameterSet parameters;
     parameters.set("surface", std::string("catmull-clark"));
     const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
@@ -343,12 +347,8 @@ void TestGroundTruth::crossingsAgainstGroundTruth() {
     QFETCH(int, resolution);
     QFETCH(int, minSameViews);
     QFETCH(int, maxApart);
-    const auto cage = name == "spot"  ? spotCage()
-                      : name == "bob" ? sampleCage("bob_controlmesh.obj")
-                                      : shape(name.toStdString(), resolution);
-    GroundTruthOptions options;
-    options.samples = kComparisonSamples;
-    const DenseGroundTruth dense(catmullClark(cage), options);
+    const auto cage = comparisonCage(name, resolution);
+    const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
     ParameterSet parameters;
     parameters.set("surface", std::string("catmull-clark"));
     std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
