@@ -6,6 +6,8 @@
 #include "contours/consistent/OptimizationPhaseSupport.h"
 #include "contours/consistent/RadialTriangles.h"
 
+#include <initializer_list>
+
 namespace contour::consistent {
 
 namespace {
@@ -14,8 +16,18 @@ struct FlipStats {
     long long rejectedFold = 0, rejectedTiny = 0, rejectedLabels = 0, pairs = 0;
 };
 
+// A flip changes the valence of every vertex it touches; a cusp keeps the
+// valence 4 of Fig. 18d until radial edges are added around it (Fig. 18e),
+// or always with optimization-cusp-edits off.
+bool valenceLocked(const ConsistentMesh& m, std::initializer_list<Index> vertices, bool cuspEdits) {
+    for (Index w : vertices)
+        if (m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w)))
+            return true;
+    return false;
+}
+
 // The flip of a-b may be considered at all: untagged, interior, c-d not
-// an edge yet, no cusp whose valence is locked (see flipBest).
+// an edge yet, no cusp whose valence is locked.
 bool flipAllowed(const ConsistentMesh& m, Index a, Index b, bool cuspEdits) {
     if (m.edgeTag(a, b) != kNoTag || m.faceOfHalfedge(a, b) == kInvalidIndex ||
         m.faceOfHalfedge(b, a) == kInvalidIndex)
@@ -24,10 +36,7 @@ bool flipAllowed(const ConsistentMesh& m, Index a, Index b, bool cuspEdits) {
     if (c == d || m.faceOfHalfedge(c, d) != kInvalidIndex ||
         m.faceOfHalfedge(d, c) != kInvalidIndex)
         return false;
-    for (Index w : {a, b, c, d})
-        if (m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w)))
-            return false;
-    return true;
+    return !valenceLocked(m, {a, b, c, d}, cuspEdits);
 }
 
 // The flipped faces in `after` (scored `trial`) pass §6.4's rules against
@@ -64,9 +73,6 @@ bool flipBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int
     std::array<Index, 2> bestEdge{kInvalidIndex, kInvalidIndex};
     for (int i = 0; i < 3; ++i) {
         const Index a = t[i], b = t[(i + 1) % 3];
-        // A flip changes the valence of all four vertices; a cusp keeps the
-        // valence 4 of Fig. 18d until radial edges are added around it
-        // (Fig. 18e), or always with optimization-cusp-edits off.
         if (!flipAllowed(m, a, b, cuspEdits))
             continue;
         const Index f0 = m.faceOfHalfedge(a, b), f1 = m.faceOfHalfedge(b, a);
@@ -135,10 +141,7 @@ bool flipPairBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits,
                     m.faceOfHalfedge(x, y) != kInvalidIndex ||
                     m.faceOfHalfedge(y, x) != kInvalidIndex)
                     continue;
-                bool locked = false;
-                for (Index v : {a, b, c, d, y})
-                    locked = locked || (m.vertex(v).cusp && (!cuspEdits || !onRadialEdge(m, v)));
-                if (locked)
+                if (valenceLocked(m, {a, b, c, d, y}, cuspEdits))
                     continue;
                 before.clear();
                 before.addFaces({f0, f1, g});
