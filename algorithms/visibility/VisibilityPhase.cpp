@@ -104,14 +104,15 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         sceneSeconds = secondsSince(t0);
     };
     // The graph needs the surface intersections (they are curves of the
-    // graph) but no ray: the Embree scene is built on the other core while
-    // both are computed (the two tasks share no written data; each is
+    // graph) but no ray. The intersections run first on every core (a
+    // parallel loop); the graph build is mostly serial, so the Embree scene
+    // is built beside it (the two tasks share no written data; each is
     // deterministic on its own, so the result does not depend on the
-    // scheduling).
+    // scheduling). Measured on controlmesh, 8 views: 218 -> 190 ms.
     ViewGraphBuildStats built;
     std::shared_ptr<ViewGraph> graph;
     double buildSeconds = 0.0;
-    auto intersectionsAndGraph = [&] {
+    auto intersections = [&] {
         if (ctx.parameters.getBool(kSurfaceIntersections)) {
             bool cached = false;
             const auto t0 = std::chrono::steady_clock::now();
@@ -129,7 +130,8 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                 s.notes.push_back(std::to_string(intersectionCurves) +
                                   " surface-intersection curves added to the curves");
         }
-        ctx.checkCancelled();
+    };
+    auto graphOnly = [&] {
         // Face orientation: the exact facing (mesh, interpolated) or the VBO
         // (consistent: the contour generator separates F-VBO from B-VBO faces).
         const char* orientationField =
@@ -165,7 +167,9 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         graph = std::make_shared<ViewGraph>(buildViewGraph(input, ctx.camera, options, &built));
         buildSeconds = secondsSince(tBuild);
     };
-    tbb::parallel_invoke(intersectionsAndGraph, buildScene);
+    intersections();
+    ctx.checkCancelled();
+    tbb::parallel_invoke(graphOnly, buildScene);
     ctx.checkCancelled();
 
     const RayCaster& rays = *rayCaster;
