@@ -384,19 +384,15 @@ GroundTruth DenseGroundTruth::compute(const Camera& camera) const {
     return truth;
 }
 
-int imageCrossings(const GroundTruth& truth, const Camera& camera) {
-    std::vector<std::array<Vec2, 2>> segments;
-    for (const GroundTruthLoop& loop : truth.loops) {
-        const size_t n = loop.points.size();
-        for (size_t k = 0; k + (loop.closed ? 0 : 1) < n; ++k)
-            segments.push_back({camera.project(loop.points[k]).pixel,
-                                camera.project(loop.points[(k + 1) % n]).pixel});
-    }
+namespace {
+
+// Pairs of image segments that cross properly. Segments sharing an end
+// point never do, so no adjacency test is needed. Quadratic, for the few
+// thousand segments of a test view.
+int properCrossings(const std::vector<std::array<Vec2, 2>>& segments) {
     const auto orient = [](const Vec2& a, const Vec2& b, const Vec2& p) {
         return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
     };
-    // Segments sharing an end point never cross properly: no adjacency test
-    // needed. Quadratic, for the few thousand segments of a test view.
     int crossings = 0;
     for (size_t i = 0; i < segments.size(); ++i)
         for (size_t j = i + 1; j < segments.size(); ++j) {
@@ -406,6 +402,32 @@ int imageCrossings(const GroundTruth& truth, const Camera& camera) {
                 orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
         }
     return crossings;
+}
+
+} // namespace
+
+int imageCrossings(const GroundTruth& truth, const Camera& camera) {
+    std::vector<std::array<Vec2, 2>> segments;
+    for (const GroundTruthLoop& loop : truth.loops) {
+        const size_t n = loop.points.size();
+        for (size_t k = 0; k + (loop.closed ? 0 : 1) < n; ++k)
+            segments.push_back({camera.project(loop.points[k]).pixel,
+                                camera.project(loop.points[(k + 1) % n]).pixel});
+    }
+    return properCrossings(segments);
+}
+
+int imageCrossings(const std::vector<Polyline>& curves, const Camera& camera) {
+    std::vector<std::array<Vec2, 2>> segments;
+    for (const Polyline& line : curves) {
+        if (line.type != CurveType::Contour)
+            continue;
+        const size_t n = line.points.size();
+        for (size_t k = 0; k + (line.closed ? 0 : 1) < n; ++k)
+            segments.push_back({camera.project(line.points[k].position).pixel,
+                                camera.project(line.points[(k + 1) % n].position).pixel});
+    }
+    return properCrossings(segments);
 }
 
 std::vector<MethodLoop> methodLoops(const Snapshot& snapshot) {

@@ -74,6 +74,13 @@ struct GroundTruth {
 // missed, like the cusps themselves.
 int imageCrossings(const GroundTruth& truth, const Camera& camera);
 
+// The same count for a method's contour curves (snapshot curves of type
+// Contour): proper crossings of their projected segments, in double, with
+// no code shared with the view-graph builder. It tells the view graph's
+// own exactness (T-junctions against the crossings of its input) apart
+// from the input's fidelity (these crossings against the ground truth's).
+int imageCrossings(const std::vector<Polyline>& curves, const Camera& camera);
+
 // Samples the view-independent part (positions and unit normals at every
 // lattice point) once; compute() then extracts the contour for any camera.
 class DenseGroundTruth {
