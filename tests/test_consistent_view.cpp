@@ -119,14 +119,6 @@ std::vector<vtkIdType> cellIds(vtkCellArray* cells, vtkIdType i) {
     return out;
 }
 
-int phaseIndex(const Runner& runner, const std::string& name) {
-    const auto& phases = runner.method().phases;
-    for (size_t i = 0; i < phases.size(); ++i)
-        if (phases[i].name == name)
-            return static_cast<int>(i);
-    return -1;
-}
-
 } // namespace
 
 class TestConsistentView : public QObject {
@@ -435,7 +427,7 @@ void TestConsistentView::stepsEveryPhaseOnSpot() {
     }
     QVERIFY(window_->runner()->atEnd());
     // Back to contour insertion for the image checks.
-    const int insertion = phaseIndex(*window_->runner(), "contour-insertion");
+    const int insertion = window_->runner()->method().phaseIndex("contour-insertion");
     QVERIFY(insertion >= 0);
     window_->runToPhase(insertion + 1);
     QCOMPARE(window_->currentSnapshot().phaseName, std::string("contour-insertion"));
@@ -568,7 +560,7 @@ void TestConsistentView::coloursByVbo() {
     // Before contour insertion some faces have an undefined VBO (green);
     // after it none should.
     const Runner* runner = window_->runner();
-    const int insertion = phaseIndex(*runner, "contour-insertion");
+    const int insertion = runner->method().phaseIndex("contour-insertion");
     window_->runToPhase(insertion);
     QCOMPARE(window_->colorField(), QString(fields::kVbo));
     const Snapshot before = window_->currentSnapshot();
@@ -603,7 +595,7 @@ void TestConsistentView::coloursByVbo() {
 
 void TestConsistentView::radialOverlaysFromTheSide() {
     const Runner* runner = window_->runner();
-    const int radial = phaseIndex(*runner, "radial-edge-insertion");
+    const int radial = runner->method().phaseIndex("radial-edge-insertion");
     QVERIFY2(radial >= 0, "the consistent method has no radial-edge-insertion phase");
     window_->runToPhase(radial + 1);
     QVERIFY(window_->waitForIdle(kIdleTimeoutMs));

@@ -77,14 +77,6 @@ const std::vector<double>* doubleField(const Snapshot& s, const char* name) {
     return f ? f->scalars() : nullptr;
 }
 
-int phaseIndex(const Runner& runner, const std::string& name) {
-    const auto& phases = runner.method().phases;
-    for (size_t i = 0; i < phases.size(); ++i)
-        if (phases[i].name == name)
-            return static_cast<int>(i);
-    return -1;
-}
-
 struct Projected {
     Vec2 pixel;
     double depth;
@@ -680,7 +672,7 @@ void TestInspector::nextInconsistentFace() {
     window_->selectionController()->clear();
     // The last phase, or contour insertion if the method left none.
     if (inconsistentFaces(window_->currentSnapshot()).empty()) {
-        const int phase = phaseIndex(*window_->runner(), "contour-insertion");
+        const int phase = window_->runner()->method().phaseIndex("contour-insertion");
         QVERIFY(phase >= 0);
         window_->runToPhase(phase + 1);
         QVERIFY(window_->waitForIdle(kIdleTimeoutMs));

@@ -102,15 +102,6 @@ long long darkPixels(const QImage& image, const QRect& area) {
     return n;
 }
 
-// Index of the phase called `name` in the runner's method, or -1.
-int phaseIndex(const Runner& runner, const std::string& name) {
-    const auto& phases = runner.method().phases;
-    for (size_t i = 0; i < phases.size(); ++i)
-        if (phases[i].name == name)
-            return static_cast<int>(i);
-    return -1;
-}
-
 QMessageBox* openMessageBox(QWidget* window) {
     for (QMessageBox* box : window->findChildren<QMessageBox*>())
         if (box->isVisible())
@@ -301,7 +292,7 @@ void TestMainWindow::stepsBackAndForward() {
     checkStepperMatchesRunner();
 
     // Faces get their colours once the facing phase has run.
-    const int facing = phaseIndex(*window_->runner(), "facing");
+    const int facing = window_->runner()->method().phaseIndex("facing");
     QVERIFY(facing >= 0);
     QCOMPARE(window_->sceneView()->showsFacing(), facing == 0);
     window_->runToPhase(facing + 1);
@@ -331,7 +322,7 @@ void TestMainWindow::stepperCountersMatchSnapshots() {
     // The facing phase's counters, as the list shows them.
     const Runner* runner = window_->runner();
     QVERIFY(runner);
-    const int phase = phaseIndex(*runner, "facing");
+    const int phase = runner->method().phaseIndex("facing");
     QVERIFY(phase >= 0 && runner->completedPhases() > phase);
     const auto counters = window_->phaseStepper()->displayedCounters(phase);
     const Snapshot& facing = runner->snapshot(phase + 1);

@@ -96,13 +96,6 @@ void compareCameras(const Camera& a, const Camera& b) {
     QCOMPARE(a.viewport.height, b.viewport.height);
 }
 
-int phaseNumber(const Method& method, const std::string& name) {
-    for (size_t i = 0; i < method.phases.size(); ++i)
-        if (method.phases[i].name == name)
-            return static_cast<int>(i) + 1;
-    return -1;
-}
-
 } // namespace
 
 class TestSessionExport : public QObject {
@@ -150,7 +143,7 @@ void TestSessionExport::initTestCase() {
         QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
     }
     QCOMPARE(window_->completedPhases(), 3);
-    const int visibility = phaseNumber(window_->runner()->method(), "visibility");
+    const int visibility = window_->runner()->method().phaseIndex("visibility") + 1;
     QVERIFY(visibility > 3);
     window_->runToPhase(visibility);
     QVERIFY(window_->waitForIdle(kIdleTimeoutMs));

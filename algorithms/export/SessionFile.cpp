@@ -229,13 +229,7 @@ int sessionPhaseTarget(const Session& session, const Method& method,
     const int count = static_cast<int>(method.phases.size());
     if (session.phaseReached == 0 || session.phaseName == "input")
         return 0;
-    const auto byName = [&]() -> int {
-        for (int i = 0; i < count; ++i)
-            if (method.phases[static_cast<size_t>(i)].name == session.phaseName)
-                return i + 1;
-        return -1;
-    };
-    if (const int named = byName(); named >= 0) {
+    if (const int named = method.phaseIndex(session.phaseName) + 1; named > 0) {
         if (named != session.phaseReached && warnings)
             warnings->push_back("phase \"" + session.phaseName + "\" is now phase " +
                                 std::to_string(named) + " of method " + method.name +

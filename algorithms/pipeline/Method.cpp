@@ -9,4 +9,11 @@ const ParameterSpec* Method::parameter(const std::string& parameterName) const {
     return nullptr;
 }
 
+int Method::phaseIndex(const std::string& phaseName) const {
+    for (size_t i = 0; i < phases.size(); ++i)
+        if (phases[i].name == phaseName)
+            return static_cast<int>(i);
+    return -1;
+}
+
 } // namespace contour

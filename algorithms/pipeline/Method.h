@@ -61,6 +61,9 @@ struct Method {
     std::vector<Phase> phases;
 
     const ParameterSpec* parameter(const std::string& parameterName) const;
+    // Index in `phases` of the phase called `phaseName`, or -1. Phases are
+    // found by name: their indices change when phases are inserted.
+    int phaseIndex(const std::string& phaseName) const;
 };
 
 } // namespace contour
