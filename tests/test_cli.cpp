@@ -270,7 +270,17 @@ private slots:
         const nlohmann::json& chains = graph["chains"];
         const nlohmann::json& nodes = graph["nodes"];
         QVERIFY(chains.size() > 1);
-        QVERIFY(graph["totals"]["nodes_by_type"].value("image-intersection", 0) > 0);
+        // Something passes in front of a contour in 2D. On the consistent
+        // mesh of this torus it is only mesh folds off the drawn curves (the
+        // dense ground truth's contour has no crossing from such views:
+        // test_ground_truth), reported as their own node type.
+        const nlohmann::json& byType = graph["totals"]["nodes_by_type"];
+        if (method == "consistent")
+            QVERIFY(byType.value("image-intersection", 0) +
+                        byType.value("hidden-fold-crossing", 0) >
+                    0);
+        else
+            QVERIFY(byType.value("image-intersection", 0) > 0);
         if (method != "interpolated") // the interpolated contours have no fold test
             QVERIFY(graph["totals"]["nodes_by_type"].value("curtain-fold", 0) > 0);
         if (method == "mesh")

@@ -368,9 +368,8 @@ void TestGroundTruth::crossingsAgainstGroundTruth() {
         QVERIFY(s.curves);
         int junctions = 0, hiddenFold = 0;
         for (const ViewNode& node : s.viewGraph->nodes) {
-            if (node.type != ViewNodeType::ImageIntersection)
-                continue;
-            (node.nearChains[0] == kInvalidIndex ? hiddenFold : junctions) += 1;
+            junctions += node.type == ViewNodeType::ImageIntersection;
+            hiddenFold += node.type == ViewNodeType::HiddenFoldCrossing;
         }
         const int curves = imageCrossings(*s.curves, camera);
         // Every T-junction is a crossing of the drawn curves (a crossing

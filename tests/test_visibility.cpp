@@ -12,11 +12,122 @@
 #include "visibility/ImageIntersections.h"
 #include "visibility/RayCaster.h"
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/intersections.h>
 #include <QtTest>
+#include <algorithm>
 #include <chrono>
+#include <functional>
+#include <optional>
+#include <random>
 
 using namespace contour;
 using namespace contour::testing;
+
+namespace {
+
+// The specification of imageIntersections (ImageIntersections.h), computed
+// the slow way: every pair intersected with exact constructions.
+ImageIntersectionResult bruteForceIntersections(const std::vector<ImageSegment>& segments,
+                                                const std::function<bool(Index, Index)>& ignore) {
+    using K = CGAL::Exact_predicates_exact_constructions_kernel;
+    ImageIntersectionResult result;
+    const size_t n = segments.size();
+    std::vector<K::Segment_2> exact(n);
+    std::vector<std::uint8_t> degenerate(n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        exact[i] = {{segments[i].a.x(), segments[i].a.y()}, {segments[i].b.x(), segments[i].b.y()}};
+        degenerate[i] = exact[i].is_degenerate();
+        result.degenerateSegments += degenerate[i];
+    }
+    struct Meet {
+        Index i, j;
+        bool overlap;
+        K::Point_2 point;
+    };
+    std::vector<Meet> meets;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j) {
+            if (degenerate[i] || degenerate[j])
+                continue;
+            const auto x = CGAL::intersection(exact[i], exact[j]);
+            if (!x)
+                continue;
+            if (const K::Point_2* p = boost::get<K::Point_2>(&*x))
+                meets.push_back({Index(i), Index(j), false, *p});
+            else
+                meets.push_back({Index(i), Index(j), true, K::Point_2()});
+        }
+    std::vector<std::uint8_t> kept(n, ignore ? 0 : 1);
+    for (const Meet& m : meets)
+        if (ignore && !ignore(m.i, m.j))
+            kept[m.i] = kept[m.j] = 1;
+    for (size_t i = 0; i < n; ++i)
+        result.sweptSegments += kept[i] && !degenerate[i];
+    std::vector<Meet> points;
+    for (const Meet& m : meets) {
+        if (!kept[m.i] || !kept[m.j])
+            continue;
+        if (m.overlap)
+            result.overlaps.emplace_back(m.i, m.j);
+        else
+            points.push_back(m);
+    }
+    std::sort(result.overlaps.begin(), result.overlaps.end());
+    std::stable_sort(points.begin(), points.end(), [](const Meet& a, const Meet& b) {
+        return CGAL::compare_xy(a.point, b.point) == CGAL::SMALLER;
+    });
+    for (size_t first = 0; first < points.size();) {
+        size_t last = first;
+        while (last < points.size() && points[last].point == points[first].point)
+            ++last;
+        std::vector<Index> ids;
+        for (size_t k = first; k < last; ++k) {
+            ids.push_back(points[k].i);
+            ids.push_back(points[k].j);
+        }
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        const K::Point_2& p = points[first].point;
+        auto endpoint = [&](Index id) -> std::optional<Vec2> {
+            if (p == exact[id].source())
+                return segments[id].a;
+            if (p == exact[id].target())
+                return segments[id].b;
+            return std::nullopt;
+        };
+        std::optional<Vec2> at;
+        for (Index id : ids)
+            if ((at = endpoint(id)))
+                break;
+        if (!at) {
+            // The documented rounding: the first two segments' crossing in double.
+            const ImageSegment &s = segments[ids[0]], &o = segments[ids[1]];
+            const Vec2 d = s.b - s.a, e = o.b - o.a, w = o.a - s.a;
+            const double den = d.x() * e.y() - d.y() * e.x();
+            const double t =
+                den != 0.0 ? std::clamp((w.x() * e.y() - w.y() * e.x()) / den, 0.0, 1.0) : 0.0;
+            at = s.a + t * d;
+        }
+        std::vector<std::pair<Index, Index>> pairs;
+        for (size_t k = first; k < last; ++k)
+            pairs.emplace_back(points[k].i, points[k].j);
+        std::sort(pairs.begin(), pairs.end());
+        for (const auto& [i, j] : pairs) {
+            ImageCrossing c;
+            c.first = i;
+            c.second = j;
+            c.point = *at;
+            c.interiorFirst = !endpoint(i);
+            c.interiorSecond = !endpoint(j);
+            result.crossings.push_back(c);
+        }
+        first = last;
+    }
+    return result;
+}
+
+} // namespace
 
 namespace {
 
@@ -144,6 +255,62 @@ private slots:
         QCOMPARE(interior, 1);
         QCOMPARE(touches, 1);
         QCOMPARE(shared, 1); // 0 and 2 at (10, 10)
+    }
+
+    // imageIntersections against a brute-force reference with CGAL's exact
+    // constructions (every pair intersected, meeting points compared
+    // exactly), on segments on a small integer grid (shared endpoints,
+    // endpoints inside other segments, collinear overlaps, several segments
+    // through one point, degenerate ones) and general ones, with and without
+    // ignored pairs: same crossings, same order, same points and overlaps.
+    void imageIntersectionsMatchBruteForce() {
+        std::mt19937 random(5);
+        for (int trial = 0; trial < 24; ++trial) {
+            const bool grid = trial % 2 == 0;
+            std::uniform_int_distribution<int> cell(0, 12);
+            std::uniform_real_distribution<double> real(0.0, 12.0);
+            std::vector<ImageSegment> segments;
+            for (int k = 0; k < 150; ++k) {
+                auto coordinate = [&] {
+                    return grid ? double(cell(random)) : real(random);
+                };
+                const Vec2 a(coordinate(), coordinate());
+                // Short segments (as along a curve), a few long ones.
+                const double reach = k % 10 == 0 ? 12.0 : 3.0;
+                Vec2 d(reach * (real(random) / 6.0 - 1.0), reach * (real(random) / 6.0 - 1.0));
+                if (grid)
+                    d = Vec2(std::round(d.x()), std::round(d.y()));
+                segments.push_back({a, a + d});
+            }
+            // Three segments through one point inside all of them.
+            segments.push_back({Vec2(0.5, 0.5), Vec2(2.5, 2.5)});
+            segments.push_back({Vec2(0.5, 2.5), Vec2(2.5, 0.5)});
+            segments.push_back({Vec2(1.5, 0.25), Vec2(1.5, 2.75)});
+            for (const bool ignoring : {false, true}) {
+                std::function<bool(Index, Index)> ignore;
+                if (ignoring)
+                    ignore = [](Index i, Index j) {
+                        return (i + j) % 3 == 0;
+                    };
+                const ImageIntersectionResult fast = imageIntersections(segments, ignore);
+                const ImageIntersectionResult slow = bruteForceIntersections(segments, ignore);
+                QCOMPARE(fast.degenerateSegments, slow.degenerateSegments);
+                QCOMPARE(fast.sweptSegments, slow.sweptSegments);
+                QCOMPARE(fast.overlaps, slow.overlaps);
+                QCOMPARE(fast.crossings.size(), slow.crossings.size());
+                for (size_t i = 0; i < fast.crossings.size(); ++i) {
+                    const ImageCrossing &x = fast.crossings[i], &y = slow.crossings[i];
+                    QCOMPARE(x.first, y.first);
+                    QCOMPARE(x.second, y.second);
+                    QCOMPARE(x.interiorFirst, y.interiorFirst);
+                    QCOMPARE(x.interiorSecond, y.interiorSecond);
+                    QVERIFY(x.point == y.point);
+                }
+                if (grid && !ignoring)
+                    QVERIFY(!slow.overlaps.empty());
+                QVERIFY(slow.crossings.size() > 50);
+            }
+        }
     }
 
     // A sphere: one closed visible contour loop, no curtain fold, QI 0.

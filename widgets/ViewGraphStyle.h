@@ -70,7 +70,7 @@ struct NodeStyle {
     const char* label;
 };
 
-inline constexpr int kViewNodeTypeCount = 7;
+inline constexpr int kViewNodeTypeCount = 8;
 
 inline NodeStyle nodeStyle(ViewNodeType type) {
     switch (type) {
@@ -89,6 +89,10 @@ inline NodeStyle nodeStyle(ViewNodeType type) {
         return {sceneColors::kIntersection, NodeGlyph::Ring, "surface-intersection end"};
     case ViewNodeType::CurveEnd:
         return {{0.25, 0.25, 0.25}, NodeGlyph::Cross, "curve end"};
+    case ViewNodeType::HiddenFoldCrossing:
+        // A T-junction's glyph in a muted colour: something occludes there,
+        // but it is a mesh fold next to inconsistent faces, not a drawn curve.
+        return {{0.60, 0.50, 0.40}, NodeGlyph::TriangleUp, "crossing behind a hidden mesh fold"};
     }
     return {{0.5, 0.5, 0.5}, NodeGlyph::Cross, "unknown"};
 }

@@ -200,6 +200,8 @@ const char* nodeColour(ViewNodeType type) {
         return "#a65628";
     case ViewNodeType::CurveEnd:
         return "#f781bf";
+    case ViewNodeType::HiddenFoldCrossing:
+        return "#999999";
     }
     return "#7f7f7f";
 }
@@ -232,6 +234,7 @@ void appendMarker(std::string& out, ViewNodeType type, const Vec2& at, double r,
                xy(0, r) + " " + xy(-r, 0) + "\"/>";
         break;
     case ViewNodeType::ImageIntersection:
+    case ViewNodeType::HiddenFoldCrossing:
         out += "<rect" + attributes + " x=\"" + num(at.x() - 0.8 * r) + "\" y=\"" +
                num(at.y() - 0.8 * r) + "\" width=\"" + num(1.6 * r) + "\" height=\"" +
                num(1.6 * r) + "\"/>";
@@ -261,8 +264,8 @@ void appendNodes(std::string& out, const ViewGraph& graph, const Camera& camera,
     for (const ViewNodeType type :
          {ViewNodeType::CurtainFold, ViewNodeType::BoundaryCurtainFold,
           ViewNodeType::ImageIntersection, ViewNodeType::ContourBoundaryJunction,
-          ViewNodeType::Bifurcation, ViewNodeType::SurfaceIntersectionEnd,
-          ViewNodeType::CurveEnd}) {
+          ViewNodeType::Bifurcation, ViewNodeType::SurfaceIntersectionEnd, ViewNodeType::CurveEnd,
+          ViewNodeType::HiddenFoldCrossing}) {
         bool any = false;
         for (const ViewNode& node : graph.nodes)
             any = any || node.type == type;

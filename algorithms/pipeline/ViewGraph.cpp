@@ -18,6 +18,8 @@ const char* toString(ViewNodeType type) {
         return "surface-intersection-end";
     case ViewNodeType::CurveEnd:
         return "curve-end";
+    case ViewNodeType::HiddenFoldCrossing:
+        return "hidden-fold-crossing";
     }
     return "unknown";
 }

@@ -28,8 +28,17 @@ enum class ViewNodeType {
                              // the surface
     CurveEnd,                // an open end with no other curve there (should not occur on a
                              // closed, clean mesh; kept so nothing is dropped silently)
+    HiddenFoldCrossing,      // a fold edge of the mesh that lies on no drawn curve passes in
+                             // front of a curve in 2D (consistent meshes: only next to
+                             // inconsistent faces): a real QI step of the mesh (+2), but no
+                             // T-junction of the drawn curves; nearChains are unused
 };
 const char* toString(ViewNodeType type);
+// Nodes where something passes in front of a curve in the image: T-junctions
+// and hidden-fold crossings (the far chains step by qiStep at both).
+inline bool isImageCrossing(ViewNodeType type) {
+    return type == ViewNodeType::ImageIntersection || type == ViewNodeType::HiddenFoldCrossing;
+}
 
 // Bénard 2014 §9 / Grabli 2010: a node seen through its visible chains only.
 enum class ViewNodeClass { Hidden, DeadEnd, Connector, Junction };

@@ -85,7 +85,7 @@ ChainVote voteChain(const ViewGraph& g, ViewChain& c, const TriangleMesh& mesh,
                     const std::vector<std::uint8_t>& faceInconsistent,
                     const std::vector<std::uint8_t>& vertexIsCusp,
                     const std::vector<std::uint8_t>& vertexNearInconsistent,
-                    const ConsistentVisibilityOptions& options) {
+                    const ConsistentVisibilityOptions& options, const RayResult* middleRay) {
     ChainVote vote;
     const size_t n = c.segmentCount();
     c.segmentRayQi.assign(n, -1);
@@ -166,8 +166,15 @@ ChainVote voteChain(const ViewGraph& g, ViewChain& c, const TriangleMesh& mesh,
             if (f != kInvalidIndex)
                 ignore.push_back(f);
         std::vector<Index> hits;
-        const int qi = rays.occluders(mid, camera, ignore, &hits);
-        ++vote.rays;
+        int qi;
+        if (middleRay && middleRay->count >= 0 && i == n / 2) {
+            // The same ray as the chain's own (chainRayQi), already cast.
+            qi = middleRay->count;
+            hits = middleRay->hits;
+        } else {
+            qi = rays.occluders(mid, camera, ignore, &hits);
+            ++vote.rays;
+        }
         c.segmentRayQi[i] = qi;
         allCounts.push_back(qi);
         bool hitsInconsistent = false;
@@ -278,8 +285,7 @@ VisibilityRule resolvingRule(const ViewGraph& g, const std::vector<ChainVote>& v
     const Index ends[2] = {c.startNode, c.endNode};
     // (a) is handled by cuspRun() (it may resolve several chains at once).
     // (b) a short chain between two T-junctions whose mates are visible.
-    if (g.nodes[ends[0]].type == ViewNodeType::ImageIntersection &&
-        g.nodes[ends[1]].type == ViewNodeType::ImageIntersection &&
+    if (isImageCrossing(g.nodes[ends[0]].type) && isImageCrossing(g.nodes[ends[1]].type) &&
         c.lengthPixels < shortChainPixels) {
         const Index m0 = mateAt(g.nodes[ends[0]], ci), m1 = mateAt(g.nodes[ends[1]], ci);
         if (decidedVisible(votes, m0) && decidedVisible(votes, m1))
@@ -288,7 +294,7 @@ VisibilityRule resolvingRule(const ViewGraph& g, const std::vector<ChainVote>& v
     // (c) a boundary chain joined to a visible chain not at a T-junction.
     if (c.type == CurveType::Boundary)
         for (Index node : ends) {
-            if (g.nodes[node].type == ViewNodeType::ImageIntersection)
+            if (isImageCrossing(g.nodes[node].type))
                 continue;
             for (Index o : othersAt(g, node, ci))
                 if (decidedVisible(votes, o))
@@ -307,7 +313,7 @@ int cuspConsistency(const ViewGraph& g, std::vector<ChainVote>& votes) {
     int changed = 0;
     for (Index tIndex = 0; tIndex < static_cast<Index>(g.nodes.size()); ++tIndex) {
         const ViewNode& t = g.nodes[tIndex];
-        if (t.type != ViewNodeType::ImageIntersection)
+        if (!isImageCrossing(t.type))
             continue;
         for (int side = 0; side < 2; ++side) {
             const std::array<Index, 2>& pair = side == 0 ? t.farChains : t.nearChains;
@@ -359,7 +365,8 @@ void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, con
                                  const RayCaster& rays,
                                  const std::vector<std::uint8_t>& faceInconsistent,
                                  const std::vector<std::uint8_t>& vertexIsCusp,
-                                 const ConsistentVisibilityOptions& options) {
+                                 const ConsistentVisibilityOptions& options,
+                                 const std::vector<RayResult>* middleRays) {
     std::vector<std::uint8_t> vertexNearInconsistent(mesh.vertexCount(), 0);
     for (Index f = 0; f < mesh.faceCount() && f < static_cast<Index>(faceInconsistent.size()); ++f)
         if (faceInconsistent[f])
@@ -370,8 +377,10 @@ void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, con
     std::vector<ChainVote> votes(chainCount);
     std::atomic<long long> rayTests{0};
     tbb::parallel_for(Index(0), chainCount, [&](Index c) {
+        const RayResult* middleRay =
+            middleRays && static_cast<size_t>(c) < middleRays->size() ? &(*middleRays)[c] : nullptr;
         votes[c] = voteChain(graph, graph.chains[c], mesh, camera, rays, faceInconsistent,
-                             vertexIsCusp, vertexNearInconsistent, options);
+                             vertexIsCusp, vertexNearInconsistent, options, middleRay);
         rayTests += votes[c].rays;
     });
     graph.rayTests += rayTests.load();

@@ -15,6 +15,7 @@
 namespace contour {
 
 class RayCaster;
+struct RayResult;
 
 struct ConsistentVisibilityOptions {
     // Footnote 3's reliability threshold of the near-face test: an interior
@@ -31,10 +32,16 @@ struct ConsistentVisibilityOptions {
 // Per-segment ray tests, ambiguity, majority vote, rules (a)-(c), cusp consistency. The
 // final chain.qi / decidedBy / ambiguous come from here; where it disagrees with the
 // propagated QI, a VisibilityConflict is appended (reason "consistent-vote").
+// middleRays (optional, per chain): rays already cast from the midpoint of
+// each chain's middle segment ignoring its faces (propagateQi /
+// checkChainsWithRays); the vote of that segment reuses the ray instead of
+// casting it again. The result is the same; graph.rayTests counts the rays
+// cast.
 void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
                                  const RayCaster& rays,
                                  const std::vector<std::uint8_t>& faceInconsistent,
                                  const std::vector<std::uint8_t>& vertexIsCusp,
-                                 const ConsistentVisibilityOptions& options);
+                                 const ConsistentVisibilityOptions& options,
+                                 const std::vector<RayResult>* middleRays = nullptr);
 
 } // namespace contour

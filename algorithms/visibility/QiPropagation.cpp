@@ -30,6 +30,7 @@ std::vector<std::vector<Link>> links(const ViewGraph& graph) {
     for (const ViewNode& node : graph.nodes) {
         switch (node.type) {
         case ViewNodeType::ImageIntersection:
+        case ViewNodeType::HiddenFoldCrossing:
             // Tutorial §4.7: the near curve keeps its QI across the crossing;
             // the far curve's occluded side is +2 behind a contour, +1
             // behind a boundary.
@@ -84,19 +85,37 @@ Index pickSeed(const ViewGraph& graph, const std::vector<Index>& component) {
 } // namespace
 
 int chainRayQi(const ViewChain& chain, const TriangleMesh& mesh, const Camera& camera,
-               const RayCaster& rays, bool exact) {
+               const RayCaster& rays, bool exact, std::vector<Index>* hits) {
     const size_t segments = chain.segmentCount();
     if (segments == 0)
         return exact ? rays.exactOccluders(chain.points.front(), camera, {})
-                     : rays.occluders(chain.points.front(), camera, {});
+                     : rays.occluders(chain.points.front(), camera, {}, hits);
     const size_t middle = segments / 2;
     const Vec3 p = 0.5 * (chain.points[middle] + chain.points[middle + 1]);
     const std::vector<Index> ignore = segmentFaces(mesh, chain, middle);
-    return exact ? rays.exactOccluders(p, camera, ignore) : rays.occluders(p, camera, ignore);
+    return exact ? rays.exactOccluders(p, camera, ignore) : rays.occluders(p, camera, ignore, hits);
 }
 
+namespace {
+
+// The chain's ray (chainRayQi), kept in middleRays when asked for.
+int castAndKeep(const ViewGraph& graph, size_t c, const TriangleMesh& mesh, const Camera& camera,
+                const RayCaster& rays, std::vector<RayResult>* middleRays) {
+    const ViewChain& chain = graph.chains[c];
+    if (!middleRays || chain.segmentCount() == 0)
+        return chainRayQi(chain, mesh, camera, rays);
+    RayResult& kept = (*middleRays)[c];
+    kept.count = chainRayQi(chain, mesh, camera, rays, false, &kept.hits);
+    return kept.count;
+}
+
+} // namespace
+
 void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
-                 const RayCaster& rays, QiPropagationStats* statsOut) {
+                 const RayCaster& rays, QiPropagationStats* statsOut,
+                 std::vector<RayResult>* middleRays) {
+    if (middleRays)
+        middleRays->resize(graph.chains.size());
     QiPropagationStats stats;
     const size_t n = graph.chains.size();
     const std::vector<std::vector<Link>> adjacency = links(graph);
@@ -130,7 +149,8 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
     for (size_t k = 0; k < components.size(); ++k)
         seeds[k] = pickSeed(graph, components[k]);
     tbb::parallel_for(size_t(0), components.size(), [&](size_t k) {
-        seedQi[k] = chainRayQi(graph.chains[seeds[k]], mesh, camera, rays);
+        seedQi[k] =
+            castAndKeep(graph, static_cast<size_t>(seeds[k]), mesh, camera, rays, middleRays);
     });
     stats.seedRays = static_cast<long long>(components.size());
 
@@ -187,12 +207,14 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
 
 void checkChainsWithRays(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
                          const RayCaster& rays, const std::string& decidedBy,
-                         QiPropagationStats* stats) {
+                         QiPropagationStats* stats, std::vector<RayResult>* middleRays) {
     const size_t n = graph.chains.size();
+    if (middleRays)
+        middleRays->resize(n);
     std::vector<int> check(n, -1);
     tbb::parallel_for(size_t(0), n, [&](size_t c) {
         if (graph.chains[c].decidedBy != VisibilityRule::RayTest)
-            check[c] = chainRayQi(graph.chains[c], mesh, camera, rays);
+            check[c] = castAndKeep(graph, c, mesh, camera, rays, middleRays);
     });
     long long tested = 0, recounts = 0;
     for (size_t c = 0; c < n; ++c) {

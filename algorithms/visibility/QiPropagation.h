@@ -14,6 +14,7 @@
 namespace contour {
 
 class RayCaster;
+struct RayResult;
 
 struct QiPropagationStats {
     long long components = 0;
@@ -29,17 +30,25 @@ struct QiPropagationStats {
 // The QI of a chain from one ray: the midpoint of its middle segment,
 // ignoring the faces adjacent to that segment's element (tutorial app. C.1).
 // exact: count with RayCaster::exactOccluders (every face, exact predicates).
+// hits (not with exact): the faces hit, as RayCaster::occluders returns them.
 int chainRayQi(const ViewChain& chain, const TriangleMesh& mesh, const Camera& camera,
-               const RayCaster& rays, bool exact = false);
+               const RayCaster& rays, bool exact = false, std::vector<Index>* hits = nullptr);
+
+// middleRays, when given, receives per chain (resized to the chain count;
+// untouched where no ray was cast) the Embree ray of chainRayQi from the
+// midpoint of the chain's middle segment: Bénard 2014 §8.4's per-segment
+// votes cast that same ray (resolveConsistentVisibility takes them, so each
+// is cast once). Chains without a segment are left out.
 
 // Ray-tests every chain not decided by a ray and records each disagreement
 // with its QI as a conflict (reason names `decidedBy`); the chain keeps its
 // QI and gets rayQi and the conflict flag.
 void checkChainsWithRays(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
                          const RayCaster& rays, const std::string& decidedBy,
-                         QiPropagationStats* stats);
+                         QiPropagationStats* stats, std::vector<RayResult>* middleRays = nullptr);
 
 void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
-                 const RayCaster& rays, QiPropagationStats* stats = nullptr);
+                 const RayCaster& rays, QiPropagationStats* stats = nullptr,
+                 std::vector<RayResult>* middleRays = nullptr);
 
 } // namespace contour

@@ -13,6 +13,14 @@
 
 namespace contour {
 
+// One ray test's result, kept to be reused by a later stage that needs the
+// same ray (same point, same ignored faces): the count and the faces hit, as
+// RayCaster::occluders returns them. count < 0: no ray was cast.
+struct RayResult {
+    int count = -1;
+    std::vector<Index> hits;
+};
+
 class RayCaster {
 public:
     explicit RayCaster(const TriangleMesh& mesh); // one Embree scene

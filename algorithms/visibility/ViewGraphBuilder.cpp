@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <tbb/parallel_for.h>
 
 namespace contour {
 
@@ -47,6 +48,7 @@ struct Incidence {
 
 // Exterior/interior classification of a contour edge.
 struct EdgeClass {
+    bool known = false; // computed (classifyCurveEdges)
     bool concave = false;
     bool unreliable = false;
 };
@@ -61,6 +63,7 @@ public:
           options_(options), stats_(stats), cuts_(curves_.size()) {}
 
     ViewGraph build() {
+        classifyCurveEdges();
         vertexNodes();
         boundaryJunctionsInFaces();
         surfaceIntersectionEnds();
@@ -81,7 +84,7 @@ private:
     const ViewGraphOptions& options_;
     ViewGraphBuildStats& stats_;
     std::vector<std::vector<Cut>> cuts_;
-    std::map<Index, EdgeClass> edgeClass_;
+    std::vector<EdgeClass> edgeClass_; // per mesh edge, see classifyCurveEdges
     ViewGraph graph_;
 
     Index segmentCount(Index c) const { return static_cast<Index>(curves_[c].segmentCount()); }
@@ -110,11 +113,9 @@ private:
     }
 
     // Tutorial app. C (convexity) or Bénard 2014 footnote 3 (near face).
-    EdgeClass classify(Index e) {
-        const auto found = edgeClass_.find(e);
-        if (found != edgeClass_.end())
-            return found->second;
+    EdgeClass computeClass(Index e) const {
         EdgeClass result;
+        result.known = true;
         const Index h = mesh_.edgeHalfedge(e);
         const Index o = mesh_.opposite(h);
         if (o != kInvalidIndex) {
@@ -134,8 +135,31 @@ private:
                 result.unreliable = near.margin < options_.nearFaceEpsilon;
             }
         }
-        edgeClass_[e] = result;
         return result;
+    }
+    EdgeClass classify(Index e) const {
+        const EdgeClass& known = edgeClass_[static_cast<size_t>(e)];
+        return known.known ? known : computeClass(e);
+    }
+
+    // The contour edges' classes (the only ones asked for: curtain folds
+    // and concave chains), computed once each, in parallel.
+    void classifyCurveEdges() {
+        edgeClass_.assign(static_cast<size_t>(mesh_.edgeCount()), EdgeClass{});
+        std::vector<Index> edges;
+        std::vector<std::uint8_t> listed(static_cast<size_t>(mesh_.edgeCount()), 0);
+        for (const Polyline& line : curves_) {
+            if (line.source != SegmentSource::MeshEdge || line.type != CurveType::Contour)
+                continue;
+            for (Index e : line.segmentElement)
+                if (e != kInvalidIndex && !listed[static_cast<size_t>(e)]) {
+                    listed[static_cast<size_t>(e)] = 1;
+                    edges.push_back(e);
+                }
+        }
+        tbb::parallel_for(size_t(0), edges.size(), [&](size_t k) {
+            edgeClass_[static_cast<size_t>(edges[k])] = computeClass(edges[k]);
+        });
     }
 
     void addCut(Index c, Cut cut) { cuts_[c].push_back(cut); }
@@ -143,7 +167,13 @@ private:
     // Curtain folds, boundary curtain folds, Y junctions, bifurcations and
     // open ends at mesh vertices (tutorial §4.3 items 2–5, §4.6 steps 3–4).
     void vertexNodes() {
-        std::map<Index, std::vector<Incidence>> at;
+        // The curve edges at each vertex, in curve order (a stable sort by
+        // vertex of the list in curve order).
+        struct At {
+            Index vertex;
+            Incidence incidence;
+        };
+        std::vector<At> at;
         for (Index c = 0; c < static_cast<Index>(curves_.size()); ++c) {
             const Polyline& line = curves_[c];
             if (line.source != SegmentSource::MeshEdge ||
@@ -155,69 +185,100 @@ private:
                 if (va == kInvalidIndex || vb == kInvalidIndex)
                     continue;
                 const Index pb = line.closed ? (s + 1) % n : s + 1;
-                at[va].push_back({c, s, s, true, vb});
-                at[vb].push_back({c, pb, s, false, va});
+                at.push_back({va, {c, s, s, true, vb}});
+                at.push_back({vb, {c, pb, s, false, va}});
             }
         }
-        for (const auto& [v, list] : at) {
-            int contours = 0, boundaries = 0;
-            for (const Incidence& i : list)
-                (curves_[i.curve].type == CurveType::Contour ? contours : boundaries)++;
-            std::vector<int> occ(list.size());
-            for (size_t i = 0; i < list.size(); ++i)
-                occ[i] = oneRingOccluders(mesh_, camera_, v, list[i].other);
+        std::stable_sort(at.begin(), at.end(),
+                         [](const At& x, const At& y) { return x.vertex < y.vertex; });
+        std::vector<size_t> groups;
+        for (size_t k = 0; k < at.size(); ++k)
+            if (k == 0 || at[k].vertex != at[k - 1].vertex)
+                groups.push_back(k);
+        groups.push_back(at.size());
 
-            ViewNodeType type;
-            bool isNode = true;
+        // Per vertex, independently (in parallel): the one-ring occluders of
+        // each curve edge (tutorial app. C.2) and the node type.
+        struct Decision {
+            ViewNodeType type = ViewNodeType::CurveEnd;
+            bool isNode = false;
             bool unreliable = false;
+            bool localOnly = false;
+        };
+        std::vector<int> occ(at.size(), 0);
+        std::vector<Decision> decisions(groups.size() - 1);
+        tbb::parallel_for(size_t(0), decisions.size(), [&](size_t g) {
+            const size_t first = groups[g], count = groups[g + 1] - first;
+            const Index v = at[first].vertex;
+            auto list = [&](size_t i) -> const Incidence& {
+                return at[first + i].incidence;
+            };
+            int contours = 0, boundaries = 0;
+            for (size_t i = 0; i < count; ++i)
+                (curves_[list(i).curve].type == CurveType::Contour ? contours : boundaries)++;
+            for (size_t i = 0; i < count; ++i)
+                occ[first + i] = oneRingOccluders(mesh_, camera_, v, list(i).other);
+
+            Decision& d = decisions[g];
+            d.isNode = true;
             if (contours > 0 && boundaries > 0)
-                type = ViewNodeType::ContourBoundaryJunction;
+                d.type = ViewNodeType::ContourBoundaryJunction;
             else if (contours > 2 || boundaries > 2)
-                type = ViewNodeType::Bifurcation;
-            else if (list.size() == 1)
-                type = ViewNodeType::CurveEnd;
-            else if (list[0].curve != list[1].curve)
-                type = ViewNodeType::Bifurcation; // two curve ends meeting: keep them linked
+                d.type = ViewNodeType::Bifurcation;
+            else if (count == 1)
+                d.type = ViewNodeType::CurveEnd;
+            else if (list(0).curve != list(1).curve)
+                d.type = ViewNodeType::Bifurcation; // two curve ends meeting: keep them linked
             else if (contours == 2) {
                 const EdgeClass e0 =
-                    classify(curves_[list[0].curve].segmentElement[list[0].segment]);
+                    classify(curves_[list(0).curve].segmentElement[list(0).segment]);
                 const EdgeClass e1 =
-                    classify(curves_[list[1].curve].segmentElement[list[1].segment]);
-                type = ViewNodeType::CurtainFold;
+                    classify(curves_[list(1).curve].segmentElement[list(1).segment]);
+                d.type = ViewNodeType::CurtainFold;
                 // Tutorial §4.3 item 3 (convex meets concave), or the general
                 // definition of item 4: one edge is occluded by the one-ring
                 // and the other is not (on consistent meshes the generator
                 // also runs over edges that are no fold of the mesh).
-                isNode = e0.concave != e1.concave || occ[0] != occ[1];
-                stats_.localOnlyFolds += e0.concave == e1.concave && occ[0] != occ[1];
-                unreliable = e0.unreliable || e1.unreliable;
+                const int o0 = occ[first], o1 = occ[first + 1];
+                d.isNode = e0.concave != e1.concave || o0 != o1;
+                d.localOnly = e0.concave == e1.concave && o0 != o1;
+                d.unreliable = e0.unreliable || e1.unreliable;
             } else {
                 // Tutorial app. C.2: exactly one of the two boundary edges is
                 // occluded by a face of the one-ring.
-                type = ViewNodeType::BoundaryCurtainFold;
-                isNode = (occ[0] > 0) != (occ[1] > 0);
+                d.type = ViewNodeType::BoundaryCurtainFold;
+                d.isNode = (occ[first] > 0) != (occ[first + 1] > 0);
             }
-            if (!isNode)
+        });
+
+        // The nodes, in vertex order.
+        for (size_t g = 0; g + 1 < groups.size(); ++g) {
+            const Decision& d = decisions[g];
+            stats_.localOnlyFolds += d.localOnly;
+            if (!d.isNode)
                 continue;
-            const Index node = addNode(type, mesh_.position(v));
+            const size_t first = groups[g], count = groups[g + 1] - first;
+            const Index v = at[first].vertex;
+            const Index node = addNode(d.type, mesh_.position(v));
             graph_.nodes[node].meshVertex = v;
-            graph_.nodes[node].unreliable = unreliable;
-            stats_.unreliableFolds += unreliable;
+            graph_.nodes[node].unreliable = d.unreliable;
+            stats_.unreliableFolds += d.unreliable;
             // One cut per (curve, point); both edges of a curve through the
             // vertex share it.
             std::map<std::pair<Index, Index>, Cut> perPoint;
-            for (size_t i = 0; i < list.size(); ++i) {
-                Cut& cut = perPoint[{list[i].curve, list[i].point}];
-                cut.segment = list[i].point;
+            for (size_t i = 0; i < count; ++i) {
+                const Incidence& incidence = at[first + i].incidence;
+                Cut& cut = perPoint[{incidence.curve, incidence.point}];
+                cut.segment = incidence.point;
                 cut.tau = 0.0;
                 cut.node = node;
                 cut.role = Cut::Role::Vertex;
-                if (list[i].after) {
+                if (incidence.after) {
                     cut.hasAfter = true;
-                    cut.occAfter = occ[i];
+                    cut.occAfter = occ[first + i];
                 } else {
                     cut.hasBefore = true;
-                    cut.occBefore = occ[i];
+                    cut.occBefore = occ[first + i];
                 }
             }
             for (const auto& [key, cut] : perPoint)
@@ -602,7 +663,12 @@ private:
             const bool startOccluded =
                 (cameraPlaneSide(camera_, a, b, d) > 0) == (cameraPlaneSide(camera_, a, b, f) > 0);
 
-            const Index node = addNode(ViewNodeType::ImageIntersection, at[farI]);
+            // A fold edge off the curves is no drawn curve: its crossing is
+            // typed apart from the T-junctions of the drawn curves.
+            const Index node =
+                addNode(nearRef.curve != kInvalidIndex ? ViewNodeType::ImageIntersection
+                                                       : ViewNodeType::HiddenFoldCrossing,
+                        at[farI]);
             graph_.nodes[node].image = crossing.point;
             graph_.nodes[node].nearPoint = at[nearI];
             // Tutorial §4.7: +2 behind a contour (two sheets meet at the
@@ -615,8 +681,6 @@ private:
                 nearCut.node = node;
                 nearCut.role = Cut::Role::Near;
                 addCut(nearRef.curve, nearCut);
-            } else {
-                ++stats_.foldOccluderJunctions;
             }
             Cut farCut;
             farCut.segment = farRef.segment;

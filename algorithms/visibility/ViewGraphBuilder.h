@@ -74,7 +74,6 @@ struct ViewGraphBuildStats {
     long long mixedConvexityChains = 0;  // contour chains with convex and concave edges
     long long nonFoldNear = 0;           // ... whose near contour edge is no mesh fold
     long long foldOccluderEdges = 0;     // mesh fold edges on no curve, added as occluders
-    long long foldOccluderJunctions = 0; // T-junctions behind such an edge
     long long localOnlyFolds = 0;        // curtain folds found by the one-ring test alone
     double sweepSeconds = 0.0;
 };

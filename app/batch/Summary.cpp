@@ -151,10 +151,12 @@ void printViewTotals(std::ostream& out, const Snapshot& last, const Camera& came
 
 void printViewGraphTotals(std::ostream& out, const ViewGraph& graph) {
     const ViewChainTally tally = graph.chainTally();
-    long long tJunctions = 0, curtainFolds = 0, boundaryFolds = 0, other = 0;
+    long long tJunctions = 0, hiddenFolds = 0, curtainFolds = 0, boundaryFolds = 0, other = 0;
     for (const ViewNode& node : graph.nodes) {
         if (node.type == ViewNodeType::ImageIntersection)
             ++tJunctions;
+        else if (node.type == ViewNodeType::HiddenFoldCrossing)
+            ++hiddenFolds;
         else if (node.type == ViewNodeType::CurtainFold)
             ++curtainFolds;
         else if (node.type == ViewNodeType::BoundaryCurtainFold)
@@ -173,6 +175,8 @@ void printViewGraphTotals(std::ostream& out, const ViewGraph& graph) {
     out << "; " << plural(tJunctions, "T-junction") << ", " << plural(curtainFolds, "curtain fold");
     if (boundaryFolds > 0)
         out << ", " << plural(boundaryFolds, "boundary curtain fold");
+    if (hiddenFolds > 0)
+        out << ", " << plural(hiddenFolds, "crossing") << " behind hidden mesh folds";
     if (other > 0)
         out << ", " << plural(other, "other node");
     out << "; " << plural(graph.rayTests, "ray test") << ", "

@@ -17,7 +17,9 @@
 // counters: surface intersections, view graph and of it the CGAL sweep, Embree
 // scene, propagation, check rays, Bénard §8.4) and a fingerprint of the graph
 // (a hash of every chain's curve, ends, QI and rule and every node's type and
-// chains) to show that an optimisation leaves the graph unchanged. --repeat N
+// chains), of its node pixels (geometry) and of everything else it records
+// (details: per-segment ray counts and ambiguity, near/far chains, conflicts)
+// to show that an optimisation leaves the graph unchanged. --repeat N
 // runs the visibility phase N times on the same input and keeps the fastest
 // (the machine is shared: the minimum is the least disturbed run).
 // --save-inputs DIR writes each view's consistent-method snapshot before the
@@ -158,6 +160,60 @@ std::pair<std::uint64_t, std::uint64_t> fingerprint(const ViewGraph& g) {
     }
     graph.add(static_cast<long long>(g.conflicts.size()));
     return {graph.h, geometry.h};
+}
+
+// Everything else the graph records (per-segment ray counts and ambiguity,
+// chain ray QI, bounds and geometry, the nodes' near/far chains, steps,
+// occluder counts and points, the conflicts), to 1e-6 px / 1e-9 relative:
+// the fingerprint above does not see a change in these.
+std::uint64_t detailPrint(const ViewGraph& g) {
+    Fnv h;
+    auto real = [&](double x) {
+        h.add(std::llround(x * 1e6));
+    };
+    for (const ViewChain& c : g.chains) {
+        for (long long v :
+             {static_cast<long long>(c.source), static_cast<long long>(c.qiLowerBound),
+              static_cast<long long>(c.concave), static_cast<long long>(c.rayQi),
+              static_cast<long long>(c.simplifiedAway)})
+            h.add(v);
+        for (int q : c.segmentRayQi)
+            h.add(q);
+        for (std::uint8_t a : c.segmentAmbiguous)
+            h.add(a);
+        for (Index f : c.segmentSecondFace)
+            h.add(f);
+        for (const Vec2& p : c.image)
+            for (int k = 0; k < 2; ++k)
+                real(p[k]);
+        for (const Vec3& p : c.points)
+            for (int k = 0; k < 3; ++k)
+                real(p[k]);
+        for (double d : c.depth)
+            real(d);
+        real(c.lengthPixels);
+    }
+    for (const ViewNode& n : g.nodes) {
+        for (Index c : n.nearChains)
+            h.add(c);
+        for (Index c : n.farChains)
+            h.add(c);
+        h.add(n.unreliable);
+        for (int o : n.localOccluders)
+            h.add(o);
+        for (int k = 0; k < 3; ++k) {
+            real(n.position[k]);
+            real(n.nearPoint[k]);
+        }
+    }
+    for (const VisibilityConflict& c : g.conflicts) {
+        h.add(c.chain);
+        h.add(c.propagatedQi);
+        h.add(c.rayQi);
+        for (char ch : c.reason)
+            h.add(ch);
+    }
+    return h.h;
 }
 
 // The visibility phase's input, saved and loaded by this bench only (raw
@@ -336,13 +392,14 @@ TimingRow timeMethod(const Method& method, const std::string& setup,
         const auto [graphPrint, geometryPrint] = fingerprint(g);
         std::printf("      %.0f image segments, %.0f swept, %.0f crossings (%.0f logical), "
                     "%.0f surface-intersection curves, %.0f cached; fingerprint %016llx, "
-                    "geometry %016llx (best of %d)\n",
+                    "geometry %016llx, details %016llx (best of %d)\n",
                     s.counter("image segments", 0.0), s.counter("image segments swept", 0.0),
                     s.counter("image crossings", 0.0), s.counter("logical crossings ignored", 0.0),
                     s.counter("surface-intersection curves", 0.0),
                     s.counter("surface intersections cached", 0.0),
                     static_cast<unsigned long long>(graphPrint),
-                    static_cast<unsigned long long>(geometryPrint), runs);
+                    static_cast<unsigned long long>(geometryPrint),
+                    static_cast<unsigned long long>(detailPrint(g)), runs);
         std::fflush(stdout);
     }
     return row;
