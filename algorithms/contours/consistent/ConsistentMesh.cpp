@@ -256,7 +256,35 @@ std::optional<Vec2> ConsistentMesh::inChart(PreimageSpan reps, Index face) const
                 const Preimage t = surface_->transferAcrossEdge(r, e);
                 return Vec2(t.u, t.v);
             }
+    for (const Preimage& r : reps)
+        if (const std::optional<Preimage> t = acrossRegularCorner(r, face))
+            return Vec2(t->u, t->v);
     return std::nullopt;
+}
+
+std::optional<Preimage> ConsistentMesh::acrossRegularCorner(const Preimage& r, Index face) const {
+    if (!vertexRingCharts_)
+        return std::nullopt;
+    // Around a regular corner exactly two paths of two edges lead from
+    // r.face to the diagonal face, and they agree (the quadrant chart);
+    // elsewhere there is one path, or they disagree: no chart.
+    std::optional<Preimage> out;
+    int paths = 0;
+    for (int e = 0; e < cornerCount(r.face); ++e) {
+        const SmoothSurface::EdgeNeighbor nb = surface_->neighbor(r.face, e);
+        if (nb.face == kInvalidIndex || nb.face == face)
+            continue;
+        for (int e2 = 0; e2 < cornerCount(nb.face); ++e2) {
+            if (surface_->neighbor(nb.face, e2).face != face)
+                continue;
+            const Preimage t = surface_->transferAcrossEdge(surface_->transferAcrossEdge(r, e), e2);
+            if (out && (std::abs(out->u - t.u) > 1e-9 || std::abs(out->v - t.v) > 1e-9))
+                return std::nullopt;
+            out = t;
+            ++paths;
+        }
+    }
+    return paths == 2 ? out : std::nullopt;
 }
 
 std::optional<Preimage> ConsistentMesh::interpolate(const Preimage& a, const Preimage& b,
@@ -308,6 +336,27 @@ std::optional<Preimage> ConsistentMesh::interpolateIn(PreimageSpan ra, PreimageS
                         return clampIntoFace(my);
                 }
             }
+    // Faces sharing a regular corner (setVertexRingCharts): the same in the
+    // chart of that corner's one-ring.
+    for (const Preimage& x : vertexRingCharts_ ? ra : PreimageSpan{})
+        for (const Preimage& y : rb) {
+            const std::optional<Preimage> yx = acrossRegularCorner(y, x.face);
+            if (!yx)
+                continue;
+            const Preimage m{x.face, (1.0 - t) * x.u + t * yx->u, (1.0 - t) * x.v + t * yx->v};
+            if (insideWithTolerance(m))
+                return clampIntoFace(m);
+            for (int back = 0; back < cornerCount(x.face); ++back) {
+                if (surface_->neighbor(x.face, back).face == kInvalidIndex)
+                    continue;
+                const Preimage my = surface_->transferAcrossEdge(m, back);
+                if (insideWithTolerance(my))
+                    return clampIntoFace(my);
+            }
+            if (const std::optional<Preimage> my = acrossRegularCorner(m, y.face);
+                my && insideWithTolerance(*my))
+                return clampIntoFace(*my);
+        }
     return std::nullopt; // no common chart: the caller cancels (appendix B)
 }
 

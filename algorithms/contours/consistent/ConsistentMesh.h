@@ -112,6 +112,12 @@ public:
     // interior edge the one with a < b).
     std::vector<std::array<Index, 2>> edges() const;
 
+    // Appendix B also names the chart of a regular domain vertex's one-ring
+    // (four quads, one per quadrant): with this on, two preimages in faces
+    // that share only such a corner have a common chart too (the second
+    // face's coordinates carried across two edges, both ways round the
+    // corner agreeing). Off: a face and its edge neighbours only.
+    void setVertexRingCharts(bool on) { vertexRingCharts_ = on; }
     // Appendix B: u(t) = (1 - t) u_a + t u_b in a common chart.
     std::optional<Preimage> interpolate(const Preimage& a, const Preimage& b, double t) const;
     // The same for several t (out[i] at t[i]): the charts of a and b are
@@ -227,6 +233,7 @@ private:
     std::shared_ptr<const SmoothSurface> surface_;
     Camera camera_;
     double tolerance_;
+    bool vertexRingCharts_ = false;
     std::vector<MeshVertex> vertices_;
     std::vector<Triangle> faces_;
     std::vector<int> facePhase_;
@@ -291,6 +298,9 @@ private:
     std::optional<Preimage> interpolateIn(PreimageSpan ra, PreimageSpan rb, double t) const;
     // p expressed in the chart of `face` (p's face, or an edge neighbour).
     std::optional<Vec2> inChart(PreimageSpan reps, Index face) const;
+    // r in the chart of `face` when the two faces share only a regular
+    // corner (setVertexRingCharts), else nullopt.
+    std::optional<Preimage> acrossRegularCorner(const Preimage& r, Index face) const;
     // Calls visit(coordinates) for every common chart of the three
     // preimages, in the order chartCoordinates() lists them; reps are their
     // equivalents().

@@ -88,6 +88,7 @@ bool sameBits(const Vec3& a, const Vec3& b) {
 
 ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
     ConsistentMesh m(surfaceFor(ctx, s), ctx.camera, ctx.parameters.getDouble("chart-tolerance"));
+    m.setVertexRingCharts(ctx.parameters.getBool("chart-vertex-rings"));
     const auto* face = optionalValues<int>(s, fields::kPreimageFace);
     const auto* uv = optionalValues<Vec3>(s, fields::kPreimageUv);
     const auto* label = optionalValues<int>(s, fields::kLabel);
@@ -148,6 +149,7 @@ ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
     if (published && m.currentVertexPreimages()) {
         ConsistentMesh fresh(m.surfacePtr(), m.camera(),
                              ctx.parameters.getDouble("chart-tolerance"));
+        fresh.setVertexRingCharts(ctx.parameters.getBool("chart-vertex-rings"));
         fresh.assign(m.vertices(), {}, {}, nullptr);
         const auto& a = *fresh.vertexPreimages();
         const auto& b = *m.currentVertexPreimages();
@@ -163,6 +165,7 @@ ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
         // The adopted per-face caches against a fresh computation.
         ConsistentMesh fresh(m.surfacePtr(), m.camera(),
                              ctx.parameters.getDouble("chart-tolerance"));
+        fresh.setVertexRingCharts(ctx.parameters.getBool("chart-vertex-rings"));
         fresh.assign(m.vertices(),
                      std::vector<Triangle>(mesh.triangles().begin(), mesh.triangles().end()),
                      *fphase, nullptr);

@@ -16,6 +16,7 @@ void addRadialExtensionPhase(Method& m);     // §6.4 (i), Fig. 15i, 16f
 void addOptimizationFlipPhase(Method& m);    // §6.4 edge flipping
 void addParameterWigglePhase(Method& m);     // §6.4 vertex wiggling in parameter space
 void addEdgeSplitPhase(Method& m);           // §6.4 edge splitting
+void addVertexRemovalPhase(Method& m);       // extension of §6.4 (§6.3 h vertex deletion)
 void addNormalWigglePhase(Method& m);        // §6.4 vertex wiggling along the normal
 void addChainingPhase(Method& m);            // §8: the contour generator as polylines
 

@@ -16,6 +16,7 @@ namespace {
 void runInitialization(const PhaseContext& ctx, Snapshot& s) {
     const std::shared_ptr<const SmoothSurface> surface = surfaceFor(ctx, s);
     ConsistentMesh m(surface, ctx.camera, ctx.parameters.getDouble("chart-tolerance"));
+    m.setVertexRingCharts(ctx.parameters.getBool("chart-vertex-rings"));
     const int phase = s.phaseIndex;
     // Step 1-3: subdivide once (the Catmull-Clark domain already is), split
     // quads, move to the limit (SurfaceTessellation at level 1).
