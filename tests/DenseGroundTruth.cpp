@@ -480,8 +480,13 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
     const auto& face = *faceField->labels();
     const auto& uv = *uvField->vectors();
     // Only the chart interpolation of the mesh is used (no camera-dependent
-    // part), so any camera will do.
-    const consistent::ConsistentMesh charts(std::move(surface), Camera{}, 1e-9);
+    // part), so any camera will do. With the one-ring charts of regular
+    // corners (appendix B): a method run with chart-vertex-rings has contour
+    // edges between diagonal domain faces, which otherwise get no sample and
+    // their faces go missing; where an edge or face chart exists it is tried
+    // first, so runs without the option map the same.
+    consistent::ConsistentMesh charts(std::move(surface), Camera{}, 1e-9);
+    charts.setVertexRingCharts(true);
     const auto preimage = [&](Index v) {
         return Preimage{face[v], uv[v].x(), uv[v].y()};
     };
@@ -490,8 +495,12 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
             continue;
         MethodLoop loop;
         loop.closed = line.closed;
-        for (size_t i = 0; i + 1 < line.points.size(); ++i) {
-            const Index a = line.points[i].vertex, b = line.points[i + 1].vertex;
+        // A closed loop's last point joins its first (the points are not
+        // repeated): that closing edge crosses faces too.
+        const size_t n = line.points.size();
+        for (size_t i = 0; i + (line.closed ? 0 : 1) < n; ++i) {
+            const size_t j = (i + 1) % n;
+            const Index a = line.points[i].vertex, b = line.points[j].vertex;
             if (a == kInvalidIndex || b == kInvalidIndex)
                 continue;
             // Both ends and 31 points between: the domain path of an edge may
@@ -505,7 +514,7 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
                     // On the straight edge (the drawn curve), not on the surface.
                     const double t = static_cast<double>(k) / kSteps;
                     loop.facePoints.emplace_back(p->face, (1.0 - t) * line.points[i].position +
-                                                              t * line.points[i + 1].position);
+                                                              t * line.points[j].position);
                 }
         }
         std::sort(loop.faces.begin(), loop.faces.end());
