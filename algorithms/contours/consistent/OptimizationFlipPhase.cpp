@@ -59,6 +59,21 @@ bool flipResultAcceptable(const LocalEdit& before, const LocalEdit& after, const
     return true;
 }
 
+// Scores the candidate edit `before` -> `after`: it must remove inconsistent
+// faces, beat `best` when there is one (betterScore) and be acceptable
+// (flipResultAcceptable, which counts its rejections in `st`). On success
+// `best` becomes its score. Shared by single flips and flip pairs.
+bool improvesOnBest(const LocalEdit& before, const LocalEdit& after, bool haveBest,
+                    LocalScore& best, double minQuality, FlipStats& st) {
+    LocalScore trial = after.score();
+    trial.inconsistent -= before.score().inconsistent;
+    if (trial.inconsistent >= 0 || (haveBest && !betterScore(trial, best)) ||
+        !flipResultAcceptable(before, after, trial, minQuality, st))
+        return false;
+    best = trial;
+    return true;
+}
+
 // §6.4: try the three edges of inconsistent face f; apply the flip that
 // removes the most inconsistent faces of the two it rewrites, ties to the
 // best minimum Bank-Smith quality. Flips creating a triangle below
@@ -79,19 +94,12 @@ bool flipBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits, int
         const auto [c, d] = m.oppositeVertices(a, b);
         before.clear();
         before.addFaces({f0, f1});
-        const LocalScore now = before.score();
         after.clear();
         after.addFace({a, d, c});
         after.addFace({b, c, d});
-        LocalScore trial = after.score();
         // Compare improvements across the three candidate edges.
-        trial.inconsistent -= now.inconsistent;
-        if (trial.inconsistent >= 0 ||
-            (bestEdge[0] != kInvalidIndex && !betterScore(trial, best)) ||
-            !flipResultAcceptable(before, after, trial, minQuality, st))
-            continue;
-        best = trial;
-        bestEdge = {a, b};
+        if (improvesOnBest(before, after, bestEdge[0] != kInvalidIndex, best, minQuality, st))
+            bestEdge = {a, b};
     }
     return bestEdge[0] != kInvalidIndex && m.flipEdge(bestEdge[0], bestEdge[1], phase);
 }
@@ -145,20 +153,14 @@ bool flipPairBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits,
                     continue;
                 before.clear();
                 before.addFaces({f0, f1, g});
-                const LocalScore now = before.score();
                 after.clear();
                 after.addFace(other);
                 // Faces u-w-x and w-u-y become u-y-x and w-x-y.
                 after.addFace({u, y, x});
                 after.addFace({w, x, y});
-                LocalScore trial = after.score();
-                trial.inconsistent -= now.inconsistent;
-                if (trial.inconsistent >= 0 ||
-                    (bestEdges[0] != kInvalidIndex && !betterScore(trial, best)) ||
-                    !flipResultAcceptable(before, after, trial, minQuality, st))
-                    continue;
-                best = trial;
-                bestEdges = {a, b, u, w};
+                if (improvesOnBest(before, after, bestEdges[0] != kInvalidIndex, best, minQuality,
+                                   st))
+                    bestEdges = {a, b, u, w};
             }
         }
     }
