@@ -299,12 +299,13 @@ private slots:
         int totals[2] = {0, 0}, atCusps[2] = {0, 0};
         for (size_t v = 0; v < all.size(); v += kViewStride)
             for (int k = 0; k < 2; ++k) {
-                // Both runs without two-flip sequences and vertex removal
-                // (on by default), so that the wiggles have the faces to
-                // work on.
+                // Both runs without two-flip sequences, vertex removal and
+                // the patch search (on by default), so that the wiggles have
+                // the faces to work on.
                 std::vector<std::pair<std::string, ParameterValue>> overrides{
                     {"optimization-flip-pairs", false},
                     {"vertex-removal", false},
+                    {"patch-search", false},
                     {"wiggle-radial-ends", k == 1},
                     {"normal-wiggle-fine-offsets", k == 1 ? 48 : 0}};
                 const ViewRun r = runAll(cage, all[v], overrides);

@@ -23,11 +23,20 @@ using namespace contour::testing;
 namespace {
 
 // The phase whose output feeds the optimization, then the §6.4 sub-phases
-// in order (with vertex-removal, an extension, before the normal wiggle).
+// in order (with vertex-removal and patch-search, extensions, before the
+// normal wiggle; a phase the method does not have is skipped).
 const char* const kPhases[] = {"radial-flips",     "radial-extension", "optimization-flips",
                                "parameter-wiggle", "edge-splitting",   "vertex-removal",
-                               "normal-wiggle"};
-constexpr int kPhaseCount = 7;
+                               "patch-search",     "normal-wiggle"};
+constexpr int kPhaseCount = 8;
+constexpr int kSplitPhase = 4, kRemovalPhase = 5;
+
+const Snapshot* find(const std::vector<Snapshot>& snapshots, const std::string& phase) {
+    for (const Snapshot& s : snapshots)
+        if (s.phaseName == phase)
+            return &s;
+    return nullptr;
+}
 
 const Snapshot& after(const std::vector<Snapshot>& snapshots, const std::string& phase) {
     for (const Snapshot& s : snapshots)
@@ -157,10 +166,11 @@ struct Tally {
 
 void report(const std::string& name, const Tally& t, int views) {
     for (int k = 0; k < kPhaseCount; ++k)
-        qInfo("%s, %d views, after %s: %.0f inconsistent of %.0f faces (%.4f %%), mean %.2f "
-              "per view, worst view %.0f",
-              name.c_str(), views, kPhases[k], t.inconsistent[k], t.faces[k],
-              100.0 * t.inconsistent[k] / t.faces[k], t.inconsistent[k] / views, t.worst[k]);
+        if (t.faces[k] > 0.0)
+            qInfo("%s, %d views, after %s: %.0f inconsistent of %.0f faces (%.4f %%), mean %.2f "
+                  "per view, worst view %.0f",
+                  name.c_str(), views, kPhases[k], t.inconsistent[k], t.faces[k],
+                  100.0 * t.inconsistent[k] / t.faces[k], t.inconsistent[k] / views, t.worst[k]);
     qInfo("%s: largest normal offset / mean one-ring distance %.3f", name.c_str(), t.offsetRatio);
     for (int c = 0; c < kClassCount; ++c) {
         std::string line;
@@ -229,7 +239,10 @@ private slots:
         QTest::addRow("sphere") << QString("sphere") << 0.005 << true << true;
         QTest::addRow("torus") << QString("torus") << 0.045 << true << true;
         QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.055 << true << true;
-        QTest::addRow("spot") << QString("spot") << 0.125 << true << true;
+        // Cusp radial edges on the opposite edge (radial-cusp-opposite-edge,
+        // session 6): spot 0.113 % -> 0.092 % (89 -> 73 faces) without
+        // patch-search, 0.081 % -> 0.061 % (64 -> 48) with it.
+        QTest::addRow("spot") << QString("spot") << 0.10 << true << true;
         QTest::addRow("bob") << QString("bob") << 0.08 << true << true;
         QTest::addRow("torus, no flip pairs") << QString("torus") << 0.045 << true << false;
         QTest::addRow("spot, no flip pairs") << QString("spot") << 0.18 << true << false;
@@ -291,6 +304,8 @@ private slots:
             }
             double previous = -1.0;
             for (int k = 0; k < kPhaseCount; ++k) {
+                if (!find(snapshots, kPhases[k]))
+                    continue;
                 const Snapshot& s = after(snapshots, kPhases[k]);
                 const double n = s.counter("inconsistent faces");
                 QVERIFY(n >= 0.0);
@@ -350,7 +365,7 @@ private slots:
         // the edge splitting on every shape (measured, Release: sphere
         // 16 -> 0, torus 102 -> 16, bumpy torus 66 -> 40, spot 308 -> 204,
         // bob 266 -> 152 over 26 views); off, it changes nothing.
-        const int split = kPhaseCount - 3, removal = kPhaseCount - 2;
+        const int split = kSplitPhase, removal = kRemovalPhase;
         if (fineOffsets || flipPairs) {
             if (t.inconsistent[split] > 0)
                 QVERIFY(t.inconsistent[removal] < t.inconsistent[split]);

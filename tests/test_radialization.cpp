@@ -10,10 +10,12 @@
 #include "contours/consistent/RadialTriangles.h"
 #include "geometry/Predicates.h"
 #include "mesh/MeshReader.h"
+#include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceFields.h"
 
 #include <QtTest>
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -159,10 +161,12 @@ private:
 
 using ViewRun = PhaseRun;
 
-ViewRun runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera) {
+ViewRun runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
+                 bool cuspOppositeEdge = true) {
     const Method& m = *findMethod("consistent");
     ParameterSet p = ParameterSet::defaults(m.parameters);
     p.set("surface", std::string("catmull-clark"));
+    p.set("radial-cusp-opposite-edge", cuspOppositeEdge);
     Runner runner(m, makeInputSnapshot(cage), camera, p);
     // Up to radial-flips only (later phases are other suites' business).
     int last = 0;
@@ -310,6 +314,26 @@ void checkShape(const char* name, const std::shared_ptr<const PolygonMesh>& cage
     report(name, t);
 }
 
+// Radial edges a cusp still lacks (Fig. 18e: two on its outside region),
+// from the published fields: sum over cusps of max(0, 2 - radial edges).
+int cuspRadialEdgesMissing(const Snapshot& s) {
+    const TriangleMesh& mesh = *s.mesh;
+    const auto& cusp = *s.field(fields::kCusp)->labels();
+    const auto& radial = *s.field(fields::kRadialEdge)->labels();
+    std::vector<int> edges(static_cast<size_t>(mesh.vertexCount()), 0);
+    for (Index e = 0; e < mesh.edgeCount(); ++e)
+        if (radial[static_cast<size_t>(e)]) {
+            const Index h = mesh.edgeHalfedge(e);
+            ++edges[static_cast<size_t>(mesh.from(h))];
+            ++edges[static_cast<size_t>(mesh.to(h))];
+        }
+    int missing = 0;
+    for (Index v = 0; v < mesh.vertexCount(); ++v)
+        if (cusp[static_cast<size_t>(v)])
+            missing += std::max(0, 2 - edges[static_cast<size_t>(v)]);
+    return missing;
+}
+
 } // namespace
 
 class TestRadialization : public QObject {
@@ -375,11 +399,50 @@ private slots:
         QCOMPARE(radialEdgesOnSide(m, p, VertexLabel::Back), 0);
     }
 
-    void sphere() { checkShape("sphere", shape("sphere", 8), {0.1, 72.0}); }
+    // Cusps (Fig. 18e) whose face insertions all fail (the radial root
+    // projects beyond the CC edge, Fig. 17) get their radial vertex on the
+    // crossed opposite edge (radial-cusp-opposite-edge): on spot far fewer
+    // cusps lack radial edges, with every post-condition kept.
+    void cuspRadialEdgesOnOppositeEdge() {
+        const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
+        QVERIFY2(std::filesystem::exists(path), "samples/spot_control_mesh.obj is absent");
+        const auto cage = std::make_shared<const PolygonMesh>(readMesh(path));
+        int missingOn = 0, missingOff = 0;
+        double placed = 0.0, cusps = 0.0;
+        for (const Camera& camera : protocol(cage->boundingBox())) {
+            const ViewRun on = runViews(cage, camera, true);
+            const ViewRun off = runViews(cage, camera, false);
+            const Snapshot& g = on.after("radial-edge-insertion");
+            verifyNoViolations(g);
+            verifyNoViolations(on.after("radial-flips"));
+            missingOn += cuspRadialEdgesMissing(g);
+            missingOff += cuspRadialEdgesMissing(off.after("radial-edge-insertion"));
+            placed += g.counter("cusp radial edges on the opposite edge");
+            cusps += g.counter("cusps", 0.0);
+        }
+        qInfo("spot: cusp radial edges missing after radial-edge-insertion %d with the "
+              "opposite-edge fallback (%.0f placed there), %d without; %.0f cusps",
+              missingOn, placed, missingOff, cusps);
+        // Measured (Release, 26 views): 22 missing with it (14 of them at the
+        // 7 cusps whose outside region is ambiguous, front == back), 70
+        // without, 48 placed on the opposite edge, 505 cusps; Debug (every
+        // fourth view): 7 / 22, 15 placed.
+        QVERIFY(placed > 0.0);
+        QVERIFY(missingOn < missingOff);
+#ifdef __OPTIMIZE__
+        QVERIFY2(missingOn <= 22, qPrintable(QString("%1 missing").arg(missingOn)));
+#endif
+    }
+
+    void sphere() {
+        checkShape("sphere", shape("sphere", 8), {0.1, 72.0});
+    }
     // The standard radial share counts the faces of cusps' inside regions,
     // which get no radial edges (Fig. 18e, radial-cusp-inside-hops 1):
     // measured worst views torus 85.4 %, spot 79.3 %.
-    void torus() { checkShape("torus", shape("torus", 12), {0.07, 85.0}); }
+    void torus() {
+        checkShape("torus", shape("torus", 12), {0.07, 85.0});
+    }
     void spot() {
         const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
         QVERIFY2(std::filesystem::exists(path), "samples/spot_control_mesh.obj is absent");

@@ -53,13 +53,16 @@ Method makeConsistentContourMethod() {
          "Appendix B interpolates in the chart of a domain vertex's one-ring. Off: only a "
          "domain face and its edge neighbours share a chart. On: also two faces meeting at a "
          "regular corner (four quads), so moves next to domain vertices are no longer "
-         "cancelled for want of a chart. Off by default: over 26 views it takes the torus "
-         "(resolution 12) from 12 inconsistent faces to 0, the bumpy torus from 14 to 11, "
-         "spot_control from 89 to 86 and bob_controlmesh from 72 to 65 (and lowers all five "
-         "large meshes over 8 views), but the torus at resolution 16 rises from 46 to 50, 7 of "
-         "those 104 views get 1-2 more, and contour insertion snaps more often, so the contour "
-         "is coarser (within 1 px of the dense ground truth in 36 views: bumpy torus 36 -> 35, "
-         "spot 23 -> 22).",
+         "cancelled for want of a chart; contour insertion still snaps only within edge charts "
+         "(snap-across-corners), so the contour matches the dense ground truth exactly as with "
+         "the option off. Off by default: over 26 views (patch-search off) it takes the torus "
+         "(resolution 12) from 12 inconsistent faces to 0, the bumpy torus from 14 to 12, "
+         "spot_control from 73 to 68 and bob_controlmesh from 72 to 70 (torus 16: 46, "
+         "unchanged), but 6 of those 130 views end 1 face worse, and over 8 views bigguy, "
+         "spot_quad and fertility drop (117 -> 103, 31 -> 28, 65 -> 63) while bob_quad and "
+         "killeroo rise (67 -> 72, 331 -> 333): the mesh reaching the final normal wiggle has "
+         "fewer inconsistent faces, but the wiggle fixes fewer of them (bob_quad view 4: 33 -> "
+         "20 against 32 -> 16).",
          ParameterType::Bool,
          false,
          0,
@@ -85,6 +88,7 @@ Method makeConsistentContourMethod() {
     addParameterWigglePhase(m);
     addEdgeSplitPhase(m);
     addVertexRemovalPhase(m);
+    addPatchSearchPhase(m);
     addNormalWigglePhase(m);
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);

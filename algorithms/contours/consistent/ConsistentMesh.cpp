@@ -246,7 +246,7 @@ ConsistentMesh::Preimages ConsistentMesh::equivalents(const Preimage& p) const {
     return out;
 }
 
-std::optional<Vec2> ConsistentMesh::inChart(PreimageSpan reps, Index face) const {
+std::optional<Vec2> ConsistentMesh::inEdgeChart(PreimageSpan reps, Index face) const {
     for (const Preimage& r : reps)
         if (r.face == face)
             return Vec2(r.u, r.v);
@@ -256,6 +256,12 @@ std::optional<Vec2> ConsistentMesh::inChart(PreimageSpan reps, Index face) const
                 const Preimage t = surface_->transferAcrossEdge(r, e);
                 return Vec2(t.u, t.v);
             }
+    return std::nullopt;
+}
+
+std::optional<Vec2> ConsistentMesh::inChart(PreimageSpan reps, Index face) const {
+    if (const std::optional<Vec2> c = inEdgeChart(reps, face))
+        return c;
     for (const Preimage& r : reps)
         if (const std::optional<Preimage> t = acrossRegularCorner(r, face))
             return Vec2(t->u, t->v);
@@ -415,6 +421,35 @@ void ConsistentMesh::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit
             if (all)
                 visit(c);
         }
+}
+
+// The charts a mesh without setVertexRingCharts has: each pair in one face
+// or in edge-adjacent faces (interpolate()'s first two cases), and the three
+// in one face's chart extended across its edges.
+bool ConsistentMesh::withinEdgeCharts(const std::array<Preimage, 3>& p) const {
+    const std::array<Preimages, 3> reps{equivalents(p[0]), equivalents(p[1]), equivalents(p[2])};
+    const auto pairShares = [&](const Preimages& ra, const Preimages& rb) {
+        for (const Preimage& x : ra)
+            for (const Preimage& y : rb) {
+                if (x.face == y.face)
+                    return true;
+                for (int e = 0; e < cornerCount(y.face); ++e)
+                    if (surface_->neighbor(y.face, e).face == x.face)
+                        return true;
+            }
+        return false;
+    };
+    if (!pairShares(reps[0], reps[1]) || !pairShares(reps[0], reps[2]))
+        return false;
+    for (const auto& candidates : reps)
+        for (const Preimage& chart : candidates) {
+            bool all = true;
+            for (int i = 0; i < 3 && all; ++i)
+                all = inEdgeChart(span(reps[i]), chart.face).has_value();
+            if (all)
+                return true;
+        }
+    return false;
 }
 
 std::vector<std::array<Vec2, 3>>

@@ -132,6 +132,11 @@ public:
     // faces holding all three, or else the faces whose chart extended across
     // their edges holds all three; empty when there is none.
     std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const;
+    // Whether p[0] shares a face or edge-adjacent faces with p[1] and with
+    // p[2], and the three lie in one face's chart extended across its edges:
+    // the charts without setVertexRingCharts. A move that must not straddle
+    // a regular corner asks this (contour insertion's snap rule).
+    bool withinEdgeCharts(const std::array<Preimage, 3>& p) const;
     // Sign of the face's orientation in parameter space (+1 counter-clockwise,
     // the domain's orientation; -1 a fold; 0 degenerate), the worst over all
     // common charts, or nullopt when the corners have no common chart.
@@ -298,6 +303,8 @@ private:
     std::optional<Preimage> interpolateIn(PreimageSpan ra, PreimageSpan rb, double t) const;
     // p expressed in the chart of `face` (p's face, or an edge neighbour).
     std::optional<Vec2> inChart(PreimageSpan reps, Index face) const;
+    // The same without the regular-corner charts.
+    std::optional<Vec2> inEdgeChart(PreimageSpan reps, Index face) const;
     // r in the chart of `face` when the two faces share only a regular
     // corner (setVertexRingCharts), else nullopt.
     std::optional<Preimage> acrossRegularCorner(const Preimage& r, Index face) const;

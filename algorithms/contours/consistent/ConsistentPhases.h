@@ -17,6 +17,7 @@ void addOptimizationFlipPhase(Method& m);    // §6.4 edge flipping
 void addParameterWigglePhase(Method& m);     // §6.4 vertex wiggling in parameter space
 void addEdgeSplitPhase(Method& m);           // §6.4 edge splitting
 void addVertexRemovalPhase(Method& m);       // extension of §6.4 (§6.3 h vertex deletion)
+void addPatchSearchPhase(Method& m);         // extension of §6.4: compound moves
 void addNormalWigglePhase(Method& m);        // §6.4 vertex wiggling along the normal
 void addChainingPhase(Method& m);            // §8: the contour generator as polylines
 

@@ -16,6 +16,22 @@ bool touchesCuspEdge(const ConsistentMesh& m, Index v) {
     return false;
 }
 
+// Snapping w onto the root joins the root to all of w's neighbours. When one
+// of w's faces would need a regular-corner chart (appendix B, one-ring of a
+// domain vertex) the new edges cut across that corner: straight contour
+// edges that span two domain faces diagonally and stray from the true
+// contour (1-1.5 px on the bumpy torus). Splitting the FB edge instead keeps
+// the contour as fine as without corner charts; the charts still serve the
+// later moves.
+bool snapStaysInEdgeCharts(const ConsistentMesh& m, Index w, const Preimage& root) {
+    for (Index f : m.vertexFaces(w)) {
+        const Triangle t = rotatedTo(m.face(f), w);
+        if (!m.withinEdgeCharts({root, m.vertex(t[1]).preimage, m.vertex(t[2]).preimage}))
+            return false;
+    }
+    return true;
+}
+
 // §6.2 (e), notes §2.2: bisection of g along every FB edge, snap to a
 // shiftable endpoint within `snap-fraction` of the edge length, otherwise
 // insert a C vertex splitting both faces (Fig. 16c); repeat until no FB edge
@@ -33,6 +49,9 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
     const double tol = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
     const int maxIterations = ctx.parameters.getInt("root-max-iterations");
     const double snap = ctx.parameters.getDouble("snap-fraction");
+    // Without corner charts every shiftable snap stays in edge charts.
+    const bool snapAcrossCorners = !ctx.parameters.getBool("chart-vertex-rings") ||
+                                   ctx.parameters.getBool("snap-across-corners");
     long long inserted = 0, snapped = 0, cancelled = 0, unconverged = 0, cusps = 0;
     for (const bool cuspStage : {false, true})
         for (bool progress = true; progress;) {
@@ -90,6 +109,7 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 for (Index w : dx <= dy ? std::array{x, y} : std::array{y, x}) {
                     const double d = w == x ? dx : dy;
                     if (!cuspEdge && d < snap * length && !touchesCuspEdge(m, w) &&
+                        (snapAcrossCorners || snapStaysInEdgeCharts(m, w, root->preimage)) &&
                         shiftable(m, w, root->preimage, VertexLabel::Contour)) {
                         m.shiftVertex(w, root->preimage, VertexLabel::Contour, phase);
                         ++snapped;
@@ -160,6 +180,18 @@ void addContourInsertionPhase(Method& m) {
          0.2,
          0.0,
          0.5,
+         {}});
+    m.parameters.push_back(
+        {"snap-across-corners",
+         "Snap across corners",
+         "With chart-vertex-rings: may the snap rule (§6.2 e) shift a vertex whose faces would "
+         "then need a regular-corner chart (appendix B)? Off: such a root is inserted by an "
+         "edge split instead, because the snapped vertex's new edges would cut across the "
+         "domain corner and the contour would stray from the true one (not in the paper).",
+         ParameterType::Bool,
+         false,
+         0,
+         0,
          {}});
     m.phases.push_back(
         {"contour-insertion",

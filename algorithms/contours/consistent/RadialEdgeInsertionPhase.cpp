@@ -4,6 +4,7 @@
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/FoldTest.h"
 #include "contours/consistent/JointRootSearch.h"
+#include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/RadialTriangles.h"
 
 #include <algorithm>
@@ -54,6 +55,7 @@ struct Settings {
     long long jointMaxEvaluations = 20000;
     bool keepConsistency = true;
     int cuspInsideHops = 0;
+    bool edgeFallback = true;
 };
 
 // The preimage at barycentric coordinates b of the corners t (appendix B
@@ -82,7 +84,7 @@ public:
 
     long long counts[kOutcomes] = {};
     long long jointVertices = 0, jointFallbacks = 0, foldFlips = 0, undone = 0, laterFaces = 0,
-              beyondMidpoints = 0;
+              beyondMidpoints = 0, onOppositeEdge = 0;
     double maxResidual = 0.0;
 
     // §6.3 (g) for one C vertex: one radial edge on each side (F, B), or, at
@@ -218,7 +220,79 @@ private:
                 ++laterFaces;
                 return Outcome::Inserted;
             }
+        // A cusp's radial curve leaves it tangent to the contour (Fig. 18e),
+        // so the root between the midpoints of its edges often projects
+        // beyond the CC edge, where Fig. 17 allows no flip. The radial
+        // vertex then goes on the opposite edge itself (not in the paper).
+        if (first != Outcome::Inserted && set_.edgeFallback && m_.vertex(p).cusp)
+            for (const Crossing& c : candidates)
+                if (insertOnOppositeEdge(c.corners, side) == Outcome::Inserted) {
+                    ++onOppositeEdge;
+                    return Outcome::Inserted;
+                }
         return first;
+    }
+
+    // p = t[0]: the root r of h_p along the opposite edge a-b (appendix B
+    // path between their preimages) splits a-b (2 -> 4 faces) and p-r
+    // becomes radial. Checked before the edit (a split has no undo): r on
+    // `side`, a-b untagged and interior, no cusp left without radial edges
+    // gains valence, defined VBOs and no degenerate edge, no parameter fold,
+    // no face turned over in 3D, and (radial-keep-consistency) no more
+    // inconsistent faces.
+    Outcome insertOnOppositeEdge(const Triangle& t, VertexLabel side) {
+        const Index p = t[0], a = t[1], b = t[2];
+        const Index o = m_.oppositeVertices(a, b)[1];
+        if (o == kInvalidIndex || m_.edgeTag(a, b) != kNoTag)
+            return Outcome::Fold;
+        if (m_.vertex(o).cusp && !onRadialEdge(m_, o))
+            return Outcome::NextToCusp;
+        const Preimage &ua = m_.vertex(a).preimage, &ub = m_.vertex(b).preimage;
+        double ha = distance(p, m_.vertex(a).position);
+        if (!((ha < 0.0) != (distance(p, m_.vertex(b).position) < 0.0)))
+            return Outcome::NoSignChange;
+        double lo = 0.0, hi = 1.0;
+        std::optional<MeshVertex> root;
+        for (int it = 0; it < set_.maxIterations && !root; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            const std::optional<Preimage> u = m_.interpolate(ua, ub, mid);
+            if (!u)
+                return Outcome::NoChart;
+            const MeshVertex v = m_.evaluate(*u);
+            const double h = distance(p, v.position);
+            if (std::abs(h) <= set_.tolerance)
+                root = v;
+            else
+                ((h < 0.0) == (ha < 0.0) ? lo : hi) = mid;
+        }
+        if (!root)
+            return Outcome::Unconverged;
+        MeshVertex r = *root;
+        r.provenance = Provenance::Inserted;
+        if (r.label == VertexLabel::Contour)
+            r.label = side;
+        if (r.label != side)
+            return Outcome::AcrossContour;
+        const Index fp = m_.faceOfHalfedge(a, b), fo = m_.faceOfHalfedge(b, a);
+        LocalEdit before(m_), edit(m_);
+        before.addFaces({fp, fo});
+        const Index v = edit.addVertex(r);
+        edit.addFace({p, a, v});
+        edit.addFace({p, v, b});
+        edit.addFace({b, v, o});
+        edit.addFace({v, a, o});
+        if (!edit.labelsValid())
+            return Outcome::Defect;
+        if (!edit.parameterValid())
+            return Outcome::ParameterFold;
+        if (edit.turnedOver() > 0)
+            return Outcome::Fold;
+        if (set_.keepConsistency && edit.inconsistent() > before.inconsistent())
+            return Outcome::LessConsistent;
+        const Index w = m_.splitEdge(a, b, r, phase_);
+        m_.addEdgeTag(p, w, kRadialEdge);
+        maxResidual = std::max(maxResidual, std::abs(distance(p, r.position)));
+        return Outcome::Inserted;
     }
 
     // One C vertex p = t[0] (Fig. 16d left): bisection of h_p(f(u_ab(s)))
@@ -469,6 +543,7 @@ void runRadialEdgeInsertion(const PhaseContext& ctx, Snapshot& s) {
     set.jointMaxEvaluations = ctx.parameters.getInt("radial-joint-max-evaluations");
     set.keepConsistency = ctx.parameters.getBool("radial-keep-consistency");
     set.cuspInsideHops = ctx.parameters.getInt("radial-cusp-inside-hops");
+    set.edgeFallback = ctx.parameters.getBool("radial-cusp-opposite-edge");
     RadialInserter inserter(m, set, s.phaseIndex);
     // Only C vertices and their fans are visited; inserted vertices are
     // never C, so the list is fixed.
@@ -500,6 +575,8 @@ void runRadialEdgeInsertion(const PhaseContext& ctx, Snapshot& s) {
                  static_cast<double>(inserter.jointFallbacks));
     s.setCounter("fold-prevention flips", static_cast<double>(inserter.foldFlips));
     s.setCounter("radial roots past the midpoints", static_cast<double>(inserter.beyondMidpoints));
+    s.setCounter("cusp radial edges on the opposite edge",
+                 static_cast<double>(inserter.onOppositeEdge));
     s.setCounter("radial edges in a farther crossing face",
                  static_cast<double>(inserter.laterFaces));
     s.setCounter("insertions undone (VBO defect)", static_cast<double>(inserter.undone));
@@ -613,6 +690,19 @@ void addRadialEdgeInsertionPhase(Method& m) {
          0,
          100,
          {}});
+    m.parameters.push_back(
+        {"radial-cusp-opposite-edge",
+         "Cusp radial edges on the opposite edge",
+         "A cusp's radial curve leaves it tangent to the contour (Fig. 18e), so the root "
+         "between the midpoints of its edges often projects beyond the CC edge and Fig. 17 "
+         "skips it. On: the radial vertex is then put on the opposite edge of the crossing "
+         "face itself (split 2 -> 4), when that passes the fold, VBO, parameter-fold and "
+         "consistency checks (not in the paper).",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
     m.phases.push_back(
         {"radial-edge-insertion",
          "§6.3 g (Fig. 15g, 16d, 17, 18e): for every C vertex p and each side (F, B; at a "
@@ -622,8 +712,9 @@ void addRadialEdgeInsertionPhase(Method& m) {
          "Fig. 17 fold prevention: the new vertex must project inside the face, else the "
          "adjacent edge of the folding triangle is flipped, else the insertion is skipped. Not "
          "in the paper: when h_p keeps its sign between the midpoints, the segments at 3/4 and "
-         "7/8 of p's edges are searched, and when the nearest crossing face fails, the next "
-         "ones are tried.",
+         "7/8 of p's edges are searched, when the nearest crossing face fails, the next "
+         "ones are tried, and a cusp whose face insertions all fail gets its radial vertex on "
+         "the crossed opposite edge (radial-cusp-opposite-edge).",
          runRadialEdgeInsertion, checkRadialEdgeInsertion});
 }
 

@@ -1,0 +1,148 @@
+// The patch search of the consistent method (PatchSearchPhase.cpp, an
+// extension of Bénard 2014 §6.4 past the fixed point of its one-edit moves):
+// over the 26-view protocol on spot, bob and the procedural tori, the phase
+// never increases the inconsistent faces of a view, violates no
+// post-condition (Debug builds enforce them: a violation throws), publishes
+// a valid mesh (two more faces per inserted vertex), and lowers the
+// inconsistent faces where it helps to a fraction of its input (what the
+// mesh would be without it) below a ceiling. Switched off, it passes the
+// mesh through.
+#include "ContourTestSupport.h"
+#include "mesh/MeshReader.h"
+#include "pipeline/FieldNames.h"
+
+#include <QtTest>
+#include <filesystem>
+
+using namespace contour;
+using namespace contour::testing;
+
+namespace {
+
+std::shared_ptr<const PolygonMesh> loadShape(const std::string& name) {
+    if (name == "spot" || name == "bob") {
+        const std::string file = name == "spot" ? "spot_control_mesh.obj" : "bob_controlmesh.obj";
+        const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/" + file;
+        if (!std::filesystem::exists(path))
+            throw std::runtime_error("samples/" + file + " is absent");
+        return std::make_shared<const PolygonMesh>(readMesh(path));
+    }
+    return shape(name, 12);
+}
+
+PhaseRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
+                 bool patchSearch) {
+    const Method& m = *findMethod("consistent");
+    ParameterSet p = ParameterSet::defaults(m.parameters);
+    p.set("patch-search", patchSearch);
+    Runner runner(m, makeInputSnapshot(cage), camera, p);
+    runner.runToEnd();
+    PhaseRun out;
+    for (int i = 0; i <= runner.completedPhases(); ++i)
+        out.snapshots.push_back(runner.snapshot(i));
+    return out;
+}
+
+std::vector<Camera> views(const PolygonMesh& cage) {
+    std::vector<Camera> all = Camera::views26(cage.boundingBox(), Viewport{800, 600});
+#ifndef __OPTIMIZE__
+    // Debug: every post-condition enforced, at many times the time.
+    all.resize(3);
+#endif
+    return all;
+}
+
+} // namespace
+
+class TestPatchSearch : public QObject {
+    Q_OBJECT
+private slots:
+    void neverWorseOverTheProtocol_data() {
+        QTest::addColumn<QString>("shapeName");
+        // Ceiling on the inconsistent faces after the phase as a fraction
+        // of those before it, summed over the 26 views (Release only).
+        // Without the phase the fraction is 1.
+        QTest::addColumn<double>("ceiling");
+        // Measured (Release, 26 views, before -> after the phase): spot
+        // 188 -> 96 (0.51), bob 152 -> 38 (0.25), bumpy torus 40 -> 20
+        // (0.50), torus 16 -> 12 (0.75).
+        QTest::addRow("spot") << QString("spot") << 0.58;
+        QTest::addRow("bob") << QString("bob") << 0.32;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.58;
+        QTest::addRow("torus") << QString("torus") << 0.8;
+    }
+
+    void neverWorseOverTheProtocol() {
+        QFETCH(QString, shapeName);
+        QFETCH(double, ceiling);
+        const std::shared_ptr<const PolygonMesh> cage = loadShape(shapeName.toStdString());
+        const std::vector<Camera> cameras = views(*cage);
+        long long before = 0, after = 0, inserted = 0, relocated = 0, finalFaces = 0;
+        for (size_t v = 0; v < cameras.size(); ++v) {
+            const PhaseRun run = runView(cage, cameras[v], true);
+            for (const Snapshot& s : run.snapshots)
+                for (const InvariantCheck& c : s.invariants)
+                    QVERIFY2(c.violations == 0,
+                             qPrintable(QString("view %1, %2: %3 (%4)")
+                                            .arg(v)
+                                            .arg(QString::fromStdString(s.phaseName))
+                                            .arg(QString::fromStdString(c.name))
+                                            .arg(QString::fromStdString(c.firstExample))));
+            const Snapshot& s = run.after("patch-search");
+            const Snapshot& previous = run.after("vertex-removal");
+            const double in = s.counter("inconsistent faces before", -1.0);
+            const double out = s.counter("inconsistent faces", -1.0);
+            QVERIFY(in >= 0.0 && out >= 0.0);
+            // The phase's input is what the previous phase published.
+            QCOMPARE(in, previous.counter("inconsistent faces", -2.0));
+            QVERIFY2(out <= in, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(in).arg(out)));
+            const TriangleMesh& mesh = *s.mesh;
+            for (Index f = 0; f < mesh.faceCount(); ++f) {
+                const Triangle& t = mesh.triangle(f);
+                QVERIFY(t[0] != t[1] && t[1] != t[2] && t[2] != t[0]);
+            }
+            QCOMPARE(static_cast<Index>(s.field(fields::kConsistent)->labels()->size()),
+                     mesh.faceCount());
+            // A new vertex adds two faces; a relocation none.
+            QCOMPARE(static_cast<double>(mesh.faceCount()),
+                     previous.counter("faces") + 2.0 * s.counter("vertices inserted"));
+            before += static_cast<long long>(in);
+            after += static_cast<long long>(out);
+            inserted += static_cast<long long>(s.counter("vertices inserted"));
+            relocated += static_cast<long long>(s.counter("vertices relocated"));
+            finalFaces +=
+                static_cast<long long>(run.snapshots.back().counter("inconsistent faces"));
+        }
+        qInfo("%s, %d views: inconsistent faces %lld before the patch search, %lld after it "
+              "(%lld vertices inserted, %lld relocated), %lld at the end",
+              qPrintable(shapeName), static_cast<int>(cameras.size()), before, after, inserted,
+              relocated, finalFaces);
+#ifdef __OPTIMIZE__
+        QVERIFY(before > 0);
+        QVERIFY2(static_cast<double>(after) <= ceiling * static_cast<double>(before),
+                 qPrintable(QString("%1 > %2 x %3").arg(after).arg(ceiling).arg(before)));
+#else
+        Q_UNUSED(ceiling);
+#endif
+    }
+
+    // Off, the phase passes the mesh through and says so.
+    void offPassesThrough() {
+        const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
+        const PhaseRun run = runView(cage, views(*cage)[2], false);
+        const Snapshot& s = run.after("patch-search");
+        const Snapshot& previous = run.after("vertex-removal");
+        QVERIFY(previous.counter("inconsistent faces") > 0.0);
+        QCOMPARE(s.counter("inconsistent faces"), previous.counter("inconsistent faces"));
+        QCOMPARE(s.mesh->faceCount(), previous.mesh->faceCount());
+        QCOMPARE(s.mesh->vertexCount(), previous.mesh->vertexCount());
+        QCOMPARE(s.counter("vertices inserted"), 0.0);
+        bool noted = false;
+        for (const std::string& n : s.notes)
+            noted = noted || n.find("patch-search = false") != std::string::npos;
+        QVERIFY(noted);
+    }
+};
+
+QTEST_APPLESS_MAIN(TestPatchSearch)
+#include "test_patch_search.moc"
