@@ -216,41 +216,40 @@ void VtkOpenGLWidget::setEventPosition(const QPointF& position, Qt::KeyboardModi
 }
 
 void VtkOpenGLWidget::mousePressEvent(QMouseEvent* event) {
-    setEventPosition(event->position(), event->modifiers());
-    switch (event->button()) {
-    case Qt::LeftButton:
-        interactor_->LeftButtonPressEvent();
-        break;
-    case Qt::MiddleButton:
-        interactor_->MiddleButtonPressEvent();
-        break;
-    case Qt::RightButton:
-        interactor_->RightButtonPressEvent();
-        break;
-    default:
+    if (!forwardButton(event, true))
         QOpenGLWidget::mousePressEvent(event);
-        return;
-    }
-    event->accept();
 }
 
 void VtkOpenGLWidget::mouseReleaseEvent(QMouseEvent* event) {
+    if (!forwardButton(event, false))
+        QOpenGLWidget::mouseReleaseEvent(event);
+}
+
+bool VtkOpenGLWidget::forwardButton(QMouseEvent* event, bool press) {
     setEventPosition(event->position(), event->modifiers());
+    // The interactor's own press/release methods, not InvokeEvent: they also
+    // keep VTK's multi-touch gesture bookkeeping.
+    using InteractorEvent = void (vtkRenderWindowInteractor::*)();
+    InteractorEvent forward = nullptr;
     switch (event->button()) {
     case Qt::LeftButton:
-        interactor_->LeftButtonReleaseEvent();
+        forward = press ? &vtkRenderWindowInteractor::LeftButtonPressEvent
+                        : &vtkRenderWindowInteractor::LeftButtonReleaseEvent;
         break;
     case Qt::MiddleButton:
-        interactor_->MiddleButtonReleaseEvent();
+        forward = press ? &vtkRenderWindowInteractor::MiddleButtonPressEvent
+                        : &vtkRenderWindowInteractor::MiddleButtonReleaseEvent;
         break;
     case Qt::RightButton:
-        interactor_->RightButtonReleaseEvent();
+        forward = press ? &vtkRenderWindowInteractor::RightButtonPressEvent
+                        : &vtkRenderWindowInteractor::RightButtonReleaseEvent;
         break;
     default:
-        QOpenGLWidget::mouseReleaseEvent(event);
-        return;
+        return false;
     }
+    (interactor_.GetPointer()->*forward)();
     event->accept();
+    return true;
 }
 
 void VtkOpenGLWidget::mouseDoubleClickEvent(QMouseEvent* event) {

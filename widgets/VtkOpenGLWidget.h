@@ -71,6 +71,9 @@ private:
     void releaseGraphicsResources();
     void setEventPosition(const QPointF& position, Qt::KeyboardModifiers modifiers,
                           bool repeat = false);
+    // A press or release of the left, middle or right button, sent to the
+    // interactor (false: another button, left to Qt).
+    bool forwardButton(QMouseEvent* event, bool press);
     void blitToWidgetFramebuffer();
 
     vtkNew<vtkGenericOpenGLRenderWindow> renderWindow_;
