@@ -1,9 +1,11 @@
 #pragma once
 // Shared set-up for the contour suites: run a method to the end on a shape.
 #include "contours/Methods.h"
+#include "mesh/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
 #include "pipeline/Runner.h"
 
+#include <filesystem>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -63,6 +65,19 @@ inline std::vector<Camera> protocolViews(const BoundingBox& box, int randomViews
 
 inline std::shared_ptr<const PolygonMesh> shape(const std::string& name, int resolution) {
     return std::make_shared<const PolygonMesh>(makeProceduralShape(name, resolution));
+}
+
+// "spot" and "bob": the sample control meshes (samples/); any other name: a
+// procedural shape at `resolution`.
+inline std::shared_ptr<const PolygonMesh> sampleOrShape(const std::string& name, int resolution) {
+    if (name == "spot" || name == "bob") {
+        const std::string file = name == "spot" ? "spot_control_mesh.obj" : "bob_controlmesh.obj";
+        const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/" + file;
+        if (!std::filesystem::exists(path))
+            throw std::runtime_error("samples/" + file + " is absent");
+        return std::make_shared<const PolygonMesh>(readMesh(path));
+    }
+    return shape(name, resolution);
 }
 
 } // namespace contour::testing
