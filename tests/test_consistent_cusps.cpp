@@ -387,14 +387,17 @@ private slots:
     // torus view 3) lands in a face diagonal to its neighbours' and was
     // cancelled for want of a chart. With chart-vertex-rings every
     // post-condition holds and no face stays inconsistent on any view
-    // (Release, 26 views: 12 -> 0).
+    // (Release, 26 views: 12 -> 0). The patch search's radial-end moves
+    // (on by default) also clear the torus, so they are off here to see the
+    // charts alone.
     void torusWithVertexRingCharts() {
         const auto cage = shape("torus", 12);
         const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
         int totals[2] = {0, 0};
         for (size_t v = 0; v < all.size(); v += kViewStride)
             for (int k = 0; k < 2; ++k) {
-                const ViewRun r = runAll(cage, all[v], {{"chart-vertex-rings", k == 1}});
+                const ViewRun r = runAll(
+                    cage, all[v], {{"chart-vertex-rings", k == 1}, {"patch-radial-ends", false}});
                 for (const Snapshot& s : r.snapshots)
                     QVERIFY2(violations(s).empty(),
                              ("view " + std::to_string(v) + ": " + violations(s)).c_str());

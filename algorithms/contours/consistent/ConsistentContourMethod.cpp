@@ -22,10 +22,11 @@ Method makeConsistentContourMethod() {
         "A per-view triangulation of the smooth surface whose contour generator is meant to be "
         "topologically equivalent to the smooth one (Bénard, Hertzmann & Kass 2014), built by "
         "the sub-phases of §6 in the paper's order, then the contour generator (edges between "
-        "F-VBO and B-VBO faces) chained. Known gap: inconsistent faces remain (about 0.013-0.11 % "
-        "of the faces per view on ConTesse's meshes, against the paper's 0.05 % on every view; "
-        "a few near cusps on a torus); every phase counts them and the Overlays toolbar "
-        "outlines them.";
+        "F-VBO and B-VBO faces) chained. Known gap: inconsistent faces remain (about 0.005-0.053 % "
+        "of the faces per view on average on ConTesse's meshes; at most 0.05 % on every view "
+        "of spot_quadrangulated, bob_quad and fertility, not yet on the other four; 0 on a "
+        "sphere, ellipsoid and torus, a few near cusps on a bumpy torus); every phase counts "
+        "them and the Overlays toolbar outlines them.";
     m.parameters = {
         {"surface",
          "Smooth surface",

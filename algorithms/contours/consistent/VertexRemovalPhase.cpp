@@ -25,12 +25,12 @@
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
 #include "contours/consistent/RadialTriangles.h"
+#include "contours/consistent/RingRetriangulation.h"
 #include "contours/consistent/TriangleQuality.h"
 
 #include <algorithm>
 #include <limits>
 #include <optional>
-#include <stdexcept>
 #include <vector>
 
 namespace contour::consistent {
@@ -43,7 +43,8 @@ struct RemovalSettings {
 };
 
 struct RemovalStats {
-    long long ringsTried = 0, noTriangulation = 0, noGain = 0, rejected = 0, removed = 0;
+    long long ringsTried = 0, noTriangulation = 0, noGain = 0, rejected = 0, unplanned = 0,
+              removed = 0;
 };
 
 // v's one-ring as a closed polygon, counter-clockwise (the order of the
@@ -200,7 +201,17 @@ public:
             ++stats.rejected;
             return false;
         }
-        apply(v, ring, faces);
+        // The removal as §6.3 (h) deletes a vertex: each flip of an edge v-w
+        // cuts off an ear of the target triangulation until v has valence 3,
+        // then its three faces merge; planned first, so that the mesh never
+        // refuses an edit half-way.
+        RingRetriangulation edits(m_, m_.vertexFaces(v));
+        if (!edits.cutEars(v, ring, faces, {}) || !edits.removeValence3Vertex(v) ||
+            !edits.endsIn(faces)) {
+            ++stats.unplanned;
+            return false;
+        }
+        edits.apply(m_, nullptr, phase_);
         ++stats.removed;
         return true;
     }
@@ -247,41 +258,6 @@ private:
         collect(ring, split, i, s, out);
         collect(ring, split, s, j, out);
     }
-
-    // The removal as §6.3 (h) deletes a vertex: each flip of an edge v-w
-    // cuts off an ear w_prev-w-w_next of the target triangulation (every
-    // polygon triangulation has an ear), until v has valence 3 and its three
-    // faces merge into the last triangle.
-    void apply(Index v, std::vector<Index> ring, std::vector<Triangle> faces) {
-        const auto has = [&](Index a, Index b, Index c) {
-            for (size_t n = 0; n < faces.size(); ++n) {
-                const Triangle& t = faces[n];
-                for (int r = 0; r < 3; ++r)
-                    if (t[r] == a && t[(r + 1) % 3] == b && t[(r + 2) % 3] == c)
-                        return static_cast<int>(n);
-            }
-            return -1;
-        };
-        while (ring.size() > 3) {
-            const int k = static_cast<int>(ring.size());
-            bool flipped = false;
-            for (int i = 0; i < k && !flipped; ++i) {
-                const Index prev = ring[(i + k - 1) % k], w = ring[i], next = ring[(i + 1) % k];
-                const int n = has(prev, w, next);
-                if (n < 0)
-                    continue;
-                if (!m_.flipEdge(v, w, phase_))
-                    throw std::logic_error("vertex removal: an ear flip failed");
-                faces.erase(faces.begin() + n);
-                ring.erase(ring.begin() + i);
-                flipped = true;
-            }
-            if (!flipped)
-                throw std::logic_error("vertex removal: no ear in the triangulation");
-        }
-        if (!m_.removeValence3Vertex(v, phase_))
-            throw std::logic_error("vertex removal: the last fan did not merge");
-    }
 };
 
 void runVertexRemoval(const PhaseContext& ctx, Snapshot& s) {
@@ -308,6 +284,8 @@ void runVertexRemoval(const PhaseContext& ctx, Snapshot& s) {
                  static_cast<double>(remover.stats.noGain));
     s.setCounter("rejected (degenerate CC edge or fold)",
                  static_cast<double>(remover.stats.rejected));
+    s.setCounter("removals skipped (the mesh would refuse an edit)",
+                 static_cast<double>(remover.stats.unplanned));
     if (!enabled)
         s.notes.push_back("vertex removal is off (vertex-removal = false): mesh passed through");
 }
