@@ -57,6 +57,7 @@
 #include "contours/consistent/RadialTriangles.h"
 #include "contours/consistent/RingRetriangulation.h"
 #include "contours/consistent/TriangleQuality.h"
+#include "contours/consistent/TriangulationCost.h"
 #include "pipeline/FieldNames.h"
 
 #include <algorithm>
@@ -87,21 +88,7 @@ struct PatchStats {
               relocated = 0, skipped = 0, unplanned = 0;
 };
 
-// Fewest inconsistent faces, then the largest minimum quality; invalid when
-// no allowed triangulation exists.
-struct Cost {
-    int inconsistent = std::numeric_limits<int>::max();
-    double minQuality = -1.0;
-    bool valid() const { return inconsistent != std::numeric_limits<int>::max(); }
-};
-bool better(const Cost& a, const Cost& b) {
-    if (!b.valid())
-        return a.valid();
-    if (!a.valid())
-        return false;
-    return a.inconsistent < b.inconsistent ||
-           (a.inconsistent == b.inconsistent && a.minQuality > b.minQuality);
-}
+using Cost = TriangulationCost;
 Cost plus(const Cost& a, const Cost& b) {
     if (!a.valid() || !b.valid())
         return {};

@@ -27,6 +27,7 @@
 #include "contours/consistent/RadialTriangles.h"
 #include "contours/consistent/RingRetriangulation.h"
 #include "contours/consistent/TriangleQuality.h"
+#include "contours/consistent/TriangulationCost.h"
 
 #include <algorithm>
 #include <limits>
@@ -80,21 +81,8 @@ std::vector<Index> orderedRing(const ConsistentMesh& m, Index v) {
 }
 
 // Best triangulation of a polygon (dynamic programming over its
-// sub-polygons): fewest inconsistent faces, then the largest minimum
-// Bank-Smith quality; a triangle that is not allowed has no cost.
-struct Cost {
-    int inconsistent = std::numeric_limits<int>::max();
-    double minQuality = -1.0;
-    bool valid() const { return inconsistent != std::numeric_limits<int>::max(); }
-};
-bool better(const Cost& a, const Cost& b) {
-    if (!b.valid())
-        return a.valid();
-    if (!a.valid())
-        return false;
-    return a.inconsistent < b.inconsistent ||
-           (a.inconsistent == b.inconsistent && a.minQuality > b.minQuality);
-}
+// sub-polygons), by TriangulationCost.
+using Cost = TriangulationCost;
 
 class VertexRemover {
 public:
