@@ -276,25 +276,7 @@ private:
                     half.emplace_back(a, b);
             }
         }
-        std::vector<Index> ring;
-        if (half.size() < 3)
-            return ring;
-        Index w = half.front().first;
-        for (size_t k = 0; k < half.size(); ++k) {
-            ring.push_back(w);
-            const auto it =
-                std::find_if(half.begin(), half.end(), [w](const auto& e) { return e.first == w; });
-            if (it == half.end())
-                return {};
-            w = it->second;
-        }
-        if (w != ring.front())
-            return {};
-        std::vector<Index> sorted = ring;
-        std::sort(sorted.begin(), sorted.end());
-        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-            return {};
-        return ring;
+        return simpleCycle(half);
     }
 
     bool cornersAllowed(const std::vector<Index>& ring) const {

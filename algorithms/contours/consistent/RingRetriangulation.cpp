@@ -194,4 +194,27 @@ void RingRetriangulation::apply(ConsistentMesh& m, const MeshVertex* split, int 
     }
 }
 
+std::vector<Index> simpleCycle(const std::vector<std::pair<Index, Index>>& edges) {
+    std::vector<Index> ring;
+    if (edges.size() < 3)
+        return ring;
+    Index w = edges.front().first;
+    for (size_t k = 0; k < edges.size(); ++k) {
+        ring.push_back(w);
+        const auto it =
+            std::find_if(edges.begin(), edges.end(),
+                         [w](const std::pair<Index, Index>& e) { return e.first == w; });
+        if (it == edges.end())
+            return {};
+        w = it->second;
+    }
+    if (w != ring.front())
+        return {};
+    std::vector<Index> sorted = ring;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+        return {};
+    return ring;
+}
+
 } // namespace contour::consistent

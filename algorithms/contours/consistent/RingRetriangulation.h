@@ -81,4 +81,10 @@ private:
     void attach(Index f);
 };
 
+// Directed edges (a, b) chained into one closed cycle a -> b -> ...,
+// starting at the first edge's tail; empty when they do not form a single
+// simple cycle of at least three corners (a patch that is not a disc, a
+// vertex on the boundary).
+std::vector<Index> simpleCycle(const std::vector<std::pair<Index, Index>>& edges);
+
 } // namespace contour::consistent

@@ -58,26 +58,7 @@ std::vector<Index> orderedRing(const ConsistentMesh& m, Index v) {
         const Triangle t = rotatedTo(m.face(f), v);
         next.emplace_back(t[1], t[2]);
     }
-    std::vector<Index> ring;
-    if (next.size() < 3)
-        return ring;
-    Index w = next.front().first;
-    for (size_t k = 0; k < next.size(); ++k) {
-        ring.push_back(w);
-        const auto it =
-            std::find_if(next.begin(), next.end(),
-                         [w](const std::pair<Index, Index>& e) { return e.first == w; });
-        if (it == next.end())
-            return {};
-        w = it->second;
-    }
-    if (w != ring.front())
-        return {};
-    std::vector<Index> sorted = ring;
-    std::sort(sorted.begin(), sorted.end());
-    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-        return {};
-    return ring;
+    return simpleCycle(next);
 }
 
 // Best triangulation of a polygon (dynamic programming over its
