@@ -22,13 +22,6 @@ struct SplitSettings {
     bool cuspEdits = true;
 };
 
-// A cusp keeps the valence 4 of Fig. 18d until radial edges are added
-// around it (the post-condition of ConsistentPhaseSupport); with
-// `cuspEdits` off, any cusp keeps its valence.
-bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
-    return w != kInvalidIndex && m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
-}
-
 // §6.4: "edges of inconsistent triangles are sampled at 10 locations and the
 // best one (using previous criteria) is selected": over the three edges of
 // f and `samples` interior points of each (t = k / (samples + 1), along the

@@ -6,6 +6,10 @@
 
 namespace contour::consistent {
 
+bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
+    return w != kInvalidIndex && m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
+}
+
 void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
                   const std::string& sweepParameter) {
     s.setCounter("inconsistent faces before", static_cast<double>(t.before));

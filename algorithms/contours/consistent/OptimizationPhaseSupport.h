@@ -35,6 +35,12 @@ void sweepInconsistent(const PhaseContext& ctx, ConsistentMesh& m, int maxSweeps
                        bool visitVertices, OptimizationTally& tally,
                        const std::function<bool(Index)>& tryMove);
 
+// A cusp keeps the valence 4 of Fig. 18d until radial edges are added
+// around it (the post-condition of ConsistentPhaseSupport); with
+// `cuspEdits` off (optimization-cusp-edits), any cusp keeps its valence.
+// False for kInvalidIndex.
+bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits);
+
 // Post-conditions after every §6.4 phase: the common ones (embedding, no
 // parameter fold, charts, no degenerate CC edge), those of contour insertion
 // (no FB edge, every VBO defined, |g| at C vertices, cusp valence 4), the

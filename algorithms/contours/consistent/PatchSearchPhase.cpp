@@ -110,10 +110,6 @@ struct Patch {
     Index partner = kInvalidIndex;
 };
 
-bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
-    return m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
-}
-
 class PatchSearcher {
 public:
     PatchSearcher(ConsistentMesh& m, const PatchSettings& set, int phase)
