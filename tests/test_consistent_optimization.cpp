@@ -43,14 +43,27 @@ const Snapshot& after(const std::vector<Snapshot>& snapshots, const std::string&
     throw std::runtime_error("no phase " + phase);
 }
 
+// Every snapshot of one run of the consistent method (the input first).
+std::vector<Snapshot> runAll(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
+                             const ParameterSet& p) {
+    Runner runner(*findMethod("consistent"), makeInputSnapshot(cage), camera, p);
+    runner.runToEnd();
+    std::vector<Snapshot> out;
+    for (int i = 0; i <= runner.completedPhases(); ++i)
+        out.push_back(runner.snapshot(i));
+    return out;
+}
+
 // The method's defaults with its extensions of §6.4 switched:
 // normal-wiggle-fine-offsets (48 by default, `fineOffsets`) and
 // optimization-flip-pairs (on by default, `flipPairs`). Both off means the
 // paper's method as written (the "paper only" rows): then every phase and
 // option that is not in the paper is off too, the optimization's
-// (vertex-removal, patch-search) and the radialization's
+// (vertex-removal, patch-search, patch-contour-slide,
+// normal-wiggle-pair-offsets) and the radialization's
 // (radial-keep-consistency, radial-fan-sequences, radial-cusp-opposite-edge,
-// radial-cusp-both-sides), so those rows measure §6.3-§6.4 alone.
+// radial-cusp-both-sides) and cusp detection's contour samples, so those
+// rows measure §6.2-§6.4 as written.
 std::vector<Snapshot> runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
                                bool fineOffsets, bool flipPairs) {
     const Method& m = *findMethod("consistent");
@@ -62,15 +75,14 @@ std::vector<Snapshot> runViews(const std::shared_ptr<const PolygonMesh>& cage, c
     const bool paperOnly = !fineOffsets && !flipPairs;
     for (const char* extension :
          {"vertex-removal", "patch-search", "radial-keep-consistency", "radial-fan-sequences",
-          "radial-cusp-opposite-edge", "radial-cusp-both-sides"})
+          "radial-cusp-opposite-edge", "radial-cusp-both-sides", "patch-contour-slide"})
         if (paperOnly)
             p.set(extension, false);
-    Runner runner(m, makeInputSnapshot(cage), camera, p);
-    runner.runToEnd();
-    std::vector<Snapshot> out;
-    for (int i = 0; i <= runner.completedPhases(); ++i)
-        out.push_back(runner.snapshot(i));
-    return out;
+    if (paperOnly) {
+        p.set("normal-wiggle-pair-offsets", 0);
+        p.set("cusp-contour-samples", 0); // §6.2 d's corner test
+    }
+    return runAll(cage, camera, p);
 }
 
 // Notes §6.1 item 2 after the normal wiggle: |α| <= the mean distance from
@@ -241,19 +253,25 @@ private slots:
         // extensions and patch-search on (then 12, 9 and 49 faces). With
         // patch-radial-ends on (lead, end of session 6): torus 0 faces with
         // and without flip pairs, spot 37 (0.0468 %), bob 21 (0.0199 %),
-        // spot without flip pairs 43 (0.0545 %), the rest unchanged.
+        // spot without flip pairs 43 (0.0545 %), the rest unchanged. With
+        // patch-contour-slide and normal-wiggle-pair-offsets on (session 7):
+        // bumpy torus 10 (0.0335 %), spot 33 (0.0417 %), bob 17 (0.0161 %),
+        // spot without flip pairs 39 (0.0494 %), the rest unchanged. With
+        // cusp-contour-samples 32 on (lead, session 7: more of the true
+        // cusps, so more of the hard faces at cusps): spot 39 (0.0489 %),
+        // spot without flip pairs 43 (0.0540 %), the rest unchanged.
         QTest::addRow("sphere") << QString("sphere") << 0.0 << true << true;
         QTest::addRow("torus") << QString("torus") << 0.0 << true << true;
-        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.038 << true << true;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.034 << true << true;
         // Cusp radial edges on the opposite edge (radial-cusp-opposite-edge,
         // session 6): spot 0.113 % -> 0.092 % (89 -> 73 faces) without
         // patch-search, 0.081 % -> 0.061 % (64 -> 48) with it; one radial
         // edge per side at ambiguous cusps (radial-cusp-both-sides): 41 ->
         // 39 faces.
-        QTest::addRow("spot") << QString("spot") << 0.048 << true << true;
-        QTest::addRow("bob") << QString("bob") << 0.021 << true << true;
+        QTest::addRow("spot") << QString("spot") << 0.049 << true << true;
+        QTest::addRow("bob") << QString("bob") << 0.017 << true << true;
         QTest::addRow("torus, no flip pairs") << QString("torus") << 0.0 << true << false;
-        QTest::addRow("spot, no flip pairs") << QString("spot") << 0.056 << true << false;
+        QTest::addRow("spot, no flip pairs") << QString("spot") << 0.055 << true << false;
         QTest::addRow("torus, paper only") << QString("torus") << 0.235 << false << false;
         QTest::addRow("bumpy-torus, paper only")
             << QString("bumpy-torus") << 0.17 << false << false;
@@ -274,6 +292,59 @@ private slots:
             << QString("bumpy-torus") << 0.175 << false << false;
 #endif
     }
+    // normal-wiggle-pair-offsets (an extension of §6.4's normal wiggle):
+    // after the one-vertex sweeps, the two ends of an edge of an
+    // inconsistent face move along their normals together. Against the
+    // same run without it: no view ends with more inconsistent faces, some
+    // end with fewer, every post-condition holds (Debug enforces them in the
+    // phases), every offset stays within the mean one-ring distance.
+    // Measured (Release, 26 views, final inconsistent faces without -> with
+    // pairs, patch-contour-slide off): here spot 35 -> 33; bench_consistent
+    // spot_control 37 -> 35, bob_control 21 -> 19, bigguy 196 -> 184,
+    // spot_quad 37 -> 31, bob_quad 80 -> 78, killeroo 735 -> 685, bumpy
+    // torus 11 -> 10, no view worse.
+    void normalWigglePairs() {
+        const auto cage = loadShape("spot");
+        std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+#ifndef __OPTIMIZE__
+        views.resize(6);
+#endif
+        const Method& m = *findMethod("consistent");
+        const auto run = [&](const Camera& camera, int pairOffsets) {
+            ParameterSet p = ParameterSet::defaults(m.parameters);
+            p.set("surface", std::string("catmull-clark"));
+            p.set("normal-wiggle-pair-offsets", pairOffsets);
+            return runAll(cage, camera, p);
+        };
+        double without = 0.0, with = 0.0, pairs = 0.0;
+        int better = 0;
+        for (size_t v = 0; v < views.size(); ++v) {
+            const std::vector<Snapshot> offRun = run(views[v], 0), onRun = run(views[v], 24);
+            for (const Snapshot& s : onRun)
+                for (const InvariantCheck& c : s.invariants)
+                    QVERIFY2(c.violations == 0,
+                             qPrintable(QString::fromStdString("view " + std::to_string(v) + ", " +
+                                                               s.phaseName + ": " + c.name)));
+            const Snapshot& off = after(offRun, "normal-wiggle");
+            const Snapshot& on = after(onRun, "normal-wiggle");
+            QVERIFY(largestOffsetRatio(on) <= 1.0 + 1e-9);
+            const double a = offRun.back().counter("inconsistent faces", -1.0);
+            const double b = onRun.back().counter("inconsistent faces", -1.0);
+            QVERIFY(a >= 0.0 && b >= 0.0);
+            QVERIFY2(b <= a, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(a).arg(b)));
+            QCOMPARE(off.counter("vertex pairs moved", -1.0), 0.0);
+            better += b < a;
+            without += a;
+            with += b;
+            pairs += on.counter("vertex pairs moved", 0.0);
+        }
+        qInfo("spot, %d views: final inconsistent faces %.0f without normal-wiggle pairs, %.0f "
+              "with them (%d views better, %.0f pairs moved)",
+              static_cast<int>(views.size()), without, with, better, pairs);
+        QVERIFY(pairs > 0.0);
+        QVERIFY(better > 0);
+    }
+
     void optimizationOverTheProtocol() {
         QFETCH(QString, shapeName);
         QFETCH(double, ceilingPercent);

@@ -24,12 +24,14 @@ std::shared_ptr<const PolygonMesh> loadShape(const std::string& name) {
 }
 
 PhaseRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
-                 bool patchSearch, bool cornerCharts = false, bool radialEnds = false) {
+                 bool patchSearch, bool cornerCharts = false, bool radialEnds = false,
+                 bool contourSlide = true) {
     const Method& m = *findMethod("consistent");
     ParameterSet p = ParameterSet::defaults(m.parameters);
     p.set("patch-search", patchSearch);
     p.set("chart-vertex-rings", cornerCharts);
     p.set("patch-radial-ends", radialEnds);
+    p.set("patch-contour-slide", contourSlide);
     Runner runner(m, makeInputSnapshot(cage), camera, p);
     // A phase that fails (a PhaseError) fails the slot, with its message.
     runner.runToEnd();
@@ -205,6 +207,59 @@ private slots:
         qInfo("torus with patch-radial-ends, %d views: %lld vertices relocated, %lld "
               "inconsistent faces at the end",
               static_cast<int>(cameras.size()), relocated, finalFaces);
+    }
+
+    // With patch-contour-slide, a C vertex without tagged edges slides along
+    // the contour (a root of g) with its star re-triangulated: the CC edges
+    // stay (same contour edges before and after the phase), every C vertex
+    // keeps |g| <= root-tolerance (a post-condition, enforced in Debug), no
+    // view ends with more inconsistent faces than without the slide, and
+    // some end with fewer. Measured (Release, 26 views, final inconsistent
+    // faces without -> with, normal-wiggle pairs on): spot 35 -> 33 here;
+    // bench_consistent bob_control 19 -> 17, bigguy 184 -> 182, killeroo
+    // 685 -> 678, no view worse. Spot alone keeps the suite's time.
+    void contourSlideRemovesFaces() {
+        const QString shapeName = "spot";
+        const std::shared_ptr<const PolygonMesh> cage = loadShape(shapeName.toStdString());
+        std::vector<Camera> cameras = views(*cage);
+#ifndef __OPTIMIZE__
+        // Debug: view 2 alone (2 -> 1 final faces), the suite's time.
+        cameras = {cameras[2]};
+#endif
+        const auto contourEdges = [](const Snapshot& s) {
+            const auto& label = *s.field(fields::kLabel)->labels();
+            long long n = 0;
+            for (Index e = 0; e < s.mesh->edgeCount(); ++e) {
+                const Index h = s.mesh->edgeHalfedge(e);
+                n += label[static_cast<size_t>(s.mesh->from(h))] == 0 &&
+                     label[static_cast<size_t>(s.mesh->to(h))] == 0;
+            }
+            return n;
+        };
+        long long slid = 0, without = 0, with = 0;
+        int better = 0;
+        for (size_t v = 0; v < cameras.size(); ++v) {
+            const PhaseRun off = runView(cage, cameras[v], true, false, true, false);
+            const PhaseRun on = runView(cage, cameras[v], true, false, true, true);
+            const QString violation = firstViolation(on);
+            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
+            const Snapshot& s = on.after("patch-search");
+            QCOMPARE(contourEdges(s), contourEdges(on.after("vertex-removal")));
+            QCOMPARE(off.after("patch-search").counter("C vertices slid along the contour"), 0.0);
+            slid += static_cast<long long>(s.counter("C vertices slid along the contour"));
+            const double a = off.snapshots.back().counter("inconsistent faces", -1.0);
+            const double b = on.snapshots.back().counter("inconsistent faces", -1.0);
+            QVERIFY(a >= 0.0 && b >= 0.0);
+            QVERIFY2(b <= a, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(a).arg(b)));
+            better += b < a;
+            without += static_cast<long long>(a);
+            with += static_cast<long long>(b);
+        }
+        qInfo("%s, %d views: %lld C vertices slid; final inconsistent faces %lld without the "
+              "slide, %lld with it (%d views better)",
+              qPrintable(shapeName), static_cast<int>(cameras.size()), slid, without, with, better);
+        QVERIFY(slid > 0);
+        QVERIFY(better > 0);
     }
 
     // Off, the phase passes the mesh through and says so.

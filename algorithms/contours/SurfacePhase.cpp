@@ -32,9 +32,14 @@ struct TessellationEntry {
     double seconds = 0.0;
 };
 
-std::shared_ptr<const TessellationEntry> buildEntry(const SmoothSurface& surface, int level) {
+std::shared_ptr<const TessellationEntry>
+buildEntry(const std::shared_ptr<const SmoothSurface>& surfacePtr, int level) {
     const auto start = std::chrono::steady_clock::now();
-    SurfaceTessellation t = tessellate(surface, level);
+    const SmoothSurface& surface = *surfacePtr;
+    // The tessellation itself is the one the consistent method's
+    // initialization uses (sharedTessellation), so a session builds it once;
+    // this entry adds the view-independent fields and statistics.
+    const SurfaceTessellation& t = *sharedTessellation(surfacePtr, level);
     auto e = std::make_shared<TessellationEntry>();
     const size_t n = t.preimages.size();
     std::vector<int> face(n);
@@ -53,7 +58,7 @@ std::shared_ptr<const TessellationEntry> buildEntry(const SmoothSurface& surface
         return std::make_shared<const Field>(Field{location, std::move(values), description});
     };
     e->mesh = t.mesh;
-    e->normals = field(FieldLocation::Vertex, std::move(t.normals),
+    e->normals = field(FieldLocation::Vertex, t.normals,
                        "unit normal of the smooth surface at the vertex (exact limit normal)");
     e->preimageFace = field(FieldLocation::Vertex, std::move(face),
                             "domain face of the vertex's preimage on the smooth surface");
@@ -112,7 +117,7 @@ CachedEntry cachedTessellation(const std::shared_ptr<const SmoothSurface>& surfa
     if (existing.valid())
         return {existing.get(), true};
     try {
-        auto entry = buildEntry(*surface, level);
+        auto entry = buildEntry(surface, level);
         promise.set_value(entry);
         return {entry, false};
     } catch (...) {

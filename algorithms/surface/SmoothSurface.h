@@ -65,6 +65,14 @@ public:
     bool contains(const Preimage& p) const; // (u, v) inside its face (closed)
 
     virtual SurfacePoint evaluate(const Preimage& p) const = 0;
+    // Cheaper evaluations for callers that need less (hot loops of the
+    // consistent method: labels by sign(g), radial-plane root searches). Each
+    // returns evaluate()'s exact values (bit for bit) for what it computes;
+    // the defaults call evaluate().
+    //   evaluateFirstOrder: position, du and dv (second derivatives zero).
+    //   evaluatePosition: the position only.
+    virtual SurfacePoint evaluateFirstOrder(const Preimage& p) const { return evaluate(p); }
+    virtual Vec3 evaluatePosition(const Preimage& p) const { return evaluate(p).position; }
     // Many preimages at once; the default runs evaluate() in a parallel loop.
     virtual void evaluate(std::span<const Preimage> preimages, std::span<SurfacePoint> out) const;
 

@@ -367,6 +367,19 @@ int SubdivisionSurface::ptexFaceCount() const {
 }
 
 SurfacePoint SubdivisionSurface::evaluate(const Preimage& p) const {
+    return evaluateUpTo<2>(p);
+}
+
+SurfacePoint SubdivisionSurface::evaluateFirstOrder(const Preimage& p) const {
+    return evaluateUpTo<1>(p);
+}
+
+Vec3 SubdivisionSurface::evaluatePosition(const Preimage& p) const {
+    return evaluateUpTo<0>(p).position;
+}
+
+template <int Order> SurfacePoint SubdivisionSurface::evaluateUpTo(const Preimage& p) const {
+    constexpr int order = Order;
     if (p.face < 0 || p.face >= domain_.faceCount())
         throw std::out_of_range("subdivision surface: preimage face " + std::to_string(p.face) +
                                 " does not exist");
@@ -386,8 +399,14 @@ SurfacePoint SubdivisionSurface::evaluate(const Preimage& p) const {
     if (!handle)
         throw std::logic_error("subdivision surface: no patch at ptex face " +
                                std::to_string(c.ptexFace));
+    // OpenSubdiv computes each order's weights independently of whether the
+    // others are asked for (null pointers skip them), so fewer orders give
+    // the same weights for those computed.
     double w[6][kMaxPatchPoints];
-    table.EvaluateBasis(*handle, s, t, w[0], w[1], w[2], w[3], w[4], w[5]);
+    table.EvaluateBasis(*handle, s, t, w[0], order >= 1 ? w[1] : nullptr,
+                        order >= 1 ? w[2] : nullptr, order >= 2 ? w[3] : nullptr,
+                        order >= 2 ? w[4] : nullptr, order >= 2 ? w[5] : nullptr);
+    constexpr int rows = order >= 2 ? 6 : order == 1 ? 3 : 1;
 
     // Combine the control points: position and the five derivatives in ptex
     // coordinates.
@@ -396,12 +415,19 @@ SurfacePoint SubdivisionSurface::evaluate(const Preimage& p) const {
     double sum[6][3] = {};
     for (int i = 0; i < cvs.size(); ++i) {
         const double* q = points + 3 * static_cast<size_t>(cvs[i]);
-        for (int k = 0; k < 6; ++k) {
+        for (int k = 0; k < rows; ++k) {
             sum[k][0] += w[k][i] * q[0];
             sum[k][1] += w[k][i] * q[1];
             sum[k][2] += w[k][i] * q[2];
         }
     }
+    const auto vec = [&](int k, double scale) {
+        return Vec3(scale * sum[k][0], scale * sum[k][1], scale * sum[k][2]);
+    };
+    SurfacePoint out;
+    out.position = vec(0, 1.0);
+    if constexpr (order == 0)
+        return out;
 
     // The two EvaluateBasis slips (see the header): under a non-quad base
     // face the weights are scaled by 2^depth where 2^(depth-1) is right; on
@@ -414,18 +440,15 @@ SurfacePoint SubdivisionSurface::evaluate(const Preimage& p) const {
     }
     if (impl_->triangular && param.IsTriangleRotated())
         d2 = -d2;
-    const auto vec = [&](int k, double scale) {
-        return Vec3(scale * sum[k][0], scale * sum[k][1], scale * sum[k][2]);
-    };
     const Vec3 ps = vec(1, d1), pt = vec(2, d1);
-    const Vec3 pss = vec(3, d2), pst = vec(4, d2), ptt = vec(5, d2);
 
     // Chain rule from ptex (s, t) to the domain face's (u, v); the map is
     // affine, so only first-order terms of J appear.
-    SurfacePoint out;
-    out.position = vec(0, 1.0);
     out.du = c.j00 * ps + c.j10 * pt;
     out.dv = c.j01 * ps + c.j11 * pt;
+    if constexpr (order == 1)
+        return out;
+    const Vec3 pss = vec(3, d2), pst = vec(4, d2), ptt = vec(5, d2);
     out.duu = c.j00 * c.j00 * pss + 2.0 * c.j00 * c.j10 * pst + c.j10 * c.j10 * ptt;
     out.duv = c.j00 * c.j01 * pss + (c.j00 * c.j11 + c.j01 * c.j10) * pst + c.j10 * c.j11 * ptt;
     out.dvv = c.j01 * c.j01 * pss + 2.0 * c.j01 * c.j11 * pst + c.j11 * c.j11 * ptt;

@@ -85,6 +85,8 @@ public:
     const SubdivisionOptions& options() const { return options_; }
 
     SurfacePoint evaluate(const Preimage& p) const override;
+    SurfacePoint evaluateFirstOrder(const Preimage& p) const override;
+    Vec3 evaluatePosition(const Preimage& p) const override;
     void evaluate(std::span<const Preimage> preimages, std::span<SurfacePoint> out) const override;
 
     // Sizes, for reports and benchmarks.
@@ -107,6 +109,11 @@ private:
     SurfaceKind kind_;
     SubdivisionOptions options_;
     std::vector<PtexChart> charts_; // one per domain face
+    // evaluate() up to derivatives of order `order` (0, 1 or 2); the others
+    // are left zero. The weights and sums of each order are computed as for
+    // order 2, so the values computed are the same bits.
+    // (A template so that each order's loops have constant bounds.)
+    template <int Order> SurfacePoint evaluateUpTo(const Preimage& p) const;
     std::unique_ptr<Impl> impl_;
 };
 

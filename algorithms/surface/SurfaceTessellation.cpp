@@ -1,5 +1,6 @@
 #include "surface/SurfaceTessellation.h"
 
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -207,6 +208,43 @@ SurfaceTessellation tessellate(const SmoothSurface& surface, int level) {
     t.mesh = std::make_shared<const TriangleMesh>(std::move(positions), std::move(triangles),
                                                   t.sourceFace);
     return t;
+}
+
+std::shared_ptr<const SurfaceTessellation>
+sharedTessellation(const std::shared_ptr<const SmoothSurface>& surface, int level) {
+    if (!surface)
+        throw std::invalid_argument("sharedTessellation: no surface");
+    struct Entry {
+        std::weak_ptr<const SmoothSurface> surface;
+        int level = 0;
+        std::shared_ptr<const SurfaceTessellation> tessellation;
+    };
+    // A few surfaces (SmoothSurfaceFactory's cache holds six).
+    constexpr size_t kCapacity = 6;
+    static std::mutex mutex;
+    static std::vector<Entry> entries;
+    const auto same = [&](const Entry& e) {
+        return e.level == level && !e.surface.owner_before(surface) &&
+               !surface.owner_before(e.surface);
+    };
+    {
+        const std::lock_guard lock(mutex);
+        std::erase_if(entries, [](const Entry& e) { return e.surface.expired(); });
+        for (const Entry& e : entries)
+            if (same(e))
+                return e.tessellation;
+    }
+    // Built outside the lock (two threads may both build it; either result
+    // is the same tessellation).
+    auto built = std::make_shared<const SurfaceTessellation>(tessellate(*surface, level));
+    const std::lock_guard lock(mutex);
+    for (const Entry& e : entries)
+        if (same(e))
+            return e.tessellation;
+    if (entries.size() >= kCapacity)
+        entries.erase(entries.begin());
+    entries.push_back({surface, level, built});
+    return built;
 }
 
 } // namespace contour

@@ -45,4 +45,11 @@ struct SurfaceTessellation {
 // Throws std::invalid_argument for a level < 1 or an empty domain.
 SurfaceTessellation tessellate(const SmoothSurface& surface, int level);
 
+// tessellate() through a small cache keyed by (surface, level): the
+// tessellation depends on the surface only, so every view of a surface (the
+// consistent method's initialization, once per view) shares one. Entries
+// hold the surface weakly and die with it. Thread-safe.
+std::shared_ptr<const SurfaceTessellation>
+sharedTessellation(const std::shared_ptr<const SmoothSurface>& surface, int level);
+
 } // namespace contour

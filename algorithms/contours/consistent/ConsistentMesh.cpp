@@ -25,7 +25,10 @@ ConsistentMesh::ConsistentMesh(std::shared_ptr<const SmoothSurface> surface, con
 
 // Notes §1.3: a vertex's position is always f(u_i), its normal n(u_i).
 MeshVertex ConsistentMesh::evaluate(const Preimage& p) const {
-    const SurfacePoint sp = surface_->evaluate(p);
+    return evaluated(p, surface_->evaluate(p));
+}
+
+MeshVertex ConsistentMesh::evaluated(const Preimage& p, const SurfacePoint& sp) const {
     MeshVertex v;
     v.preimage = p;
     v.position = sp.position;
@@ -37,7 +40,8 @@ MeshVertex ConsistentMesh::evaluate(const Preimage& p) const {
 }
 
 MeshVertex ConsistentMesh::evaluateWithoutCurvature(const Preimage& p) const {
-    const SurfacePoint sp = surface_->evaluate(p);
+    // f, n and g need first derivatives only (the same bits as evaluate()).
+    const SurfacePoint sp = surface_->evaluateFirstOrder(p);
     MeshVertex v;
     v.preimage = p;
     v.position = sp.position;
@@ -60,7 +64,36 @@ void ConsistentMesh::reserve(Index vertices, Index faces) {
     vertexFaces_.reserve(vertices);
     faces_.reserve(faces);
     facePhase_.reserve(faces);
-    halfedgeFace_.reserve(3 * static_cast<size_t>(faces));
+    ownHalfedges().reserve(3 * static_cast<size_t>(faces));
+}
+
+HalfedgeMap& ConsistentMesh::ownHalfedges() {
+    if (sharedHalfedges_) {
+        halfedgeFace_ = *sharedHalfedges_;
+        sharedHalfedges_.reset();
+    }
+    return halfedgeFace_;
+}
+
+std::shared_ptr<const HalfedgeMap> ConsistentMesh::shareHalfedges() {
+    if (!sharedHalfedges_)
+        sharedHalfedges_ = std::make_shared<const HalfedgeMap>(std::move(halfedgeFace_));
+    halfedgeFace_.clear();
+    return sharedHalfedges_;
+}
+
+void ConsistentMesh::assignShared(std::vector<MeshVertex> vertices, std::vector<Triangle> faces,
+                                  std::vector<int> facePhase,
+                                  std::shared_ptr<const HalfedgeMap> halfedges) {
+    if (!halfedges) {
+        assign(std::move(vertices), std::move(faces), std::move(facePhase), nullptr);
+        return;
+    }
+    // The copying overload with an empty table to copy, then the shared one.
+    static const HalfedgeMap kEmpty;
+    assign(std::move(vertices), std::move(faces), std::move(facePhase), &kEmpty);
+    halfedgeFace_.clear();
+    sharedHalfedges_ = std::move(halfedges);
 }
 
 void ConsistentMesh::assign(std::vector<MeshVertex> vertices, std::vector<Triangle> faces,
@@ -78,6 +111,7 @@ void ConsistentMesh::assign(std::vector<MeshVertex> vertices, std::vector<Triang
     vertexFaces_.assign(vertices_.size(), {});
     for (size_t v = 0; v < vertices_.size(); ++v)
         vertexFaces_[v].reserve(static_cast<size_t>(valence[v]));
+    sharedHalfedges_.reset();
     if (halfedges) {
         halfedgeFace_ = *halfedges;
         for (Index f = 0; f < faceCount(); ++f)
@@ -102,7 +136,7 @@ void ConsistentMesh::attachFace(Index f) {
     forgetFace(f);
     const Triangle& t = faces_[f];
     for (int i = 0; i < 3; ++i) {
-        if (!halfedgeFace_.insert(key(t[i], t[(i + 1) % 3]), f))
+        if (!ownHalfedges().insert(key(t[i], t[(i + 1) % 3]), f))
             throw std::logic_error("ConsistentMesh: non-manifold or inconsistently oriented edge");
         vertexFaces_[t[i]].push_back(f);
     }
@@ -111,7 +145,7 @@ void ConsistentMesh::attachFace(Index f) {
 void ConsistentMesh::detachFace(Index f) {
     const Triangle& t = faces_[f];
     for (int i = 0; i < 3; ++i) {
-        halfedgeFace_.erase(key(t[i], t[(i + 1) % 3]), f);
+        ownHalfedges().erase(key(t[i], t[(i + 1) % 3]), f);
         std::erase(vertexFaces_[t[i]], f);
     }
 }
@@ -148,7 +182,7 @@ void ConsistentMesh::adoptFaceCaches(const FaceCaches& caches) {
 }
 
 Index ConsistentMesh::faceOfHalfedge(Index a, Index b) const {
-    return halfedgeFace_.find(key(a, b));
+    return halfedgeTable().find(key(a, b));
 }
 
 std::vector<std::array<Index, 2>> ConsistentMesh::edges() const {
@@ -759,11 +793,19 @@ void ConsistentMesh::compact() {
     }
     vertices_ = std::move(vertices);
     edgeTags_ = std::move(tags);
-    vertexFaces_.assign(n, {});
+    sharedHalfedges_.reset();
     halfedgeFace_.clear();
+    // Sized once (not grown face by face): the same lists and table.
+    halfedgeFace_.reserve(3 * faces_.size());
+    std::vector<Index> valence(static_cast<size_t>(n), 0);
     for (Triangle& t : faces_)
-        for (Index& w : t)
+        for (Index& w : t) {
             w = newIndex[w];
+            ++valence[static_cast<size_t>(w)];
+        }
+    vertexFaces_.assign(n, {});
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v)
+        vertexFaces_[v].reserve(static_cast<size_t>(valence[v]));
     for (Index f = 0; f < faceCount(); ++f)
         attachFace(f);
     orientationCache_ = std::move(orientation);

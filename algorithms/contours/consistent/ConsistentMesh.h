@@ -88,6 +88,9 @@ public:
 
     // Evaluates f, n, g and the radial curvature at p; the label is sign(g).
     MeshVertex evaluate(const Preimage& p) const;
+    // evaluate(p) given sp = surface().evaluate(p), already computed (the
+    // initialization's tessellation evaluated every vertex).
+    MeshVertex evaluated(const Preimage& p, const SurfacePoint& sp) const;
     // The same without the radial curvature (NaN): what the label and the
     // facing of a candidate need. Every other field has evaluate()'s exact
     // value, so evaluate() of a chosen candidate gives the same record.
@@ -104,7 +107,16 @@ public:
     // rebuilt). Replaces everything but the edge tags.
     void assign(std::vector<MeshVertex> vertices, std::vector<Triangle> faces,
                 std::vector<int> facePhase, const HalfedgeMap* halfedges);
-    const HalfedgeMap& halfedges() const { return halfedgeFace_; }
+    // The same with the table shared, not copied: read in place, and copied
+    // only when the mesh is first edited (a reloaded snapshot that is only
+    // checked never copies it).
+    void assignShared(std::vector<MeshVertex> vertices, std::vector<Triangle> faces,
+                      std::vector<int> facePhase, std::shared_ptr<const HalfedgeMap> halfedges);
+    const HalfedgeMap& halfedges() const { return halfedgeTable(); }
+    // The half-edge table as a shared read-only object, without a copy: the
+    // mesh goes on reading it, and copies it on its next edit (publish()
+    // hands it to the next phase this way).
+    std::shared_ptr<const HalfedgeMap> shareHalfedges();
 
     // The face holding the directed edge a -> b, or kInvalidIndex.
     Index faceOfHalfedge(Index a, Index b) const;
@@ -124,6 +136,11 @@ public:
     // found once.
     void interpolate(const Preimage& a, const Preimage& b, std::span<const double> t,
                      std::span<std::optional<Preimage>> out) const;
+    // interpolate(a, b, t) for t chosen one at a time (a bisection): a's and
+    // b's preimages around them (appendix B) are found once, so at(t) is
+    // interpolate(a, b, t) without that search (the same results).
+    class Segment;
+    Segment segment(const Preimage& a, const Preimage& b) const;
     // Per face, the domain face holding its centroid: u(1/3) from the
     // midpoint of corners 0-1 to corner 2 (interpolate() twice),
     // kInvalidIndex without a common chart. Every face at once.
@@ -243,7 +260,15 @@ private:
     std::vector<Triangle> faces_;
     std::vector<int> facePhase_;
     std::vector<std::vector<Index>> vertexFaces_;
+    // The half-edge table: sharedHalfedges_ when set (read-only, shared with
+    // a snapshot), else halfedgeFace_ (copied from the shared one on the
+    // first edit).
     HalfedgeMap halfedgeFace_;
+    std::shared_ptr<const HalfedgeMap> sharedHalfedges_;
+    const HalfedgeMap& halfedgeTable() const {
+        return sharedHalfedges_ ? *sharedHalfedges_ : halfedgeFace_;
+    }
+    HalfedgeMap& ownHalfedges();
     std::unordered_map<std::uint64_t, int> edgeTags_;
     mutable std::shared_ptr<const VertexPreimages> preimageTable_;
     mutable std::vector<std::int8_t> orientationCache_;
@@ -316,5 +341,29 @@ private:
     template <typename Visit>
     void forEachChart(const std::array<Preimage, 3>& p, Visit visit) const;
 };
+
+class ConsistentMesh::Segment {
+public:
+    std::optional<Preimage> at(double t) const {
+        return a_.face == b_.face ? m_->interpolate(a_, b_, t)
+                                  : m_->interpolateIn(span(ra_), span(rb_), t);
+    }
+
+private:
+    friend class ConsistentMesh;
+    Segment(const ConsistentMesh& m, const Preimage& a, const Preimage& b) : m_(&m), a_(a), b_(b) {
+        if (a.face != b.face) {
+            ra_ = m.equivalents(a);
+            rb_ = m.equivalents(b);
+        }
+    }
+    const ConsistentMesh* m_;
+    Preimage a_, b_;
+    Preimages ra_, rb_;
+};
+
+inline ConsistentMesh::Segment ConsistentMesh::segment(const Preimage& a, const Preimage& b) const {
+    return {*this, a, b};
+}
 
 } // namespace contour::consistent

@@ -50,7 +50,7 @@ struct PublishedVertices final : MethodState {
     std::shared_ptr<const TriangleMesh> mesh;
     std::shared_ptr<const Field> preimageFace, preimageUv;
     std::vector<MeshVertex> vertices;
-    HalfedgeMap halfedges;
+    std::shared_ptr<const HalfedgeMap> halfedges; // shared with the publishing mesh
     std::shared_ptr<const ConsistentMesh::VertexPreimages> preimages; // null if never built
     // Per face: parameter orientation and centroid's domain face, so that a
     // phase recomputes them only for the faces it edits.
@@ -138,9 +138,9 @@ ConsistentMesh reload(const PhaseContext& ctx, const Snapshot& s) {
         }
         vertices[static_cast<size_t>(v)] = mv;
     });
-    m.assign(std::move(vertices),
-             std::vector<Triangle>(mesh.triangles().begin(), mesh.triangles().end()), *fphase,
-             published ? &published->halfedges : nullptr);
+    m.assignShared(std::move(vertices),
+                   std::vector<Triangle>(mesh.triangles().begin(), mesh.triangles().end()), *fphase,
+                   published ? published->halfedges : nullptr);
     if (published) {
         m.adoptVertexPreimages(published->preimages);
         m.adoptFaceCaches(published->faceCaches);
@@ -481,7 +481,7 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     published->preimageFace = fieldPtr(s, fields::kPreimageFace);
     published->preimageUv = fieldPtr(s, fields::kPreimageUv);
     published->vertices = m.vertices();
-    published->halfedges = m.halfedges();
+    published->halfedges = m.shareHalfedges();
     published->preimages = m.currentVertexPreimages();
     published->faceCaches = m.faceCaches();
     published->analysis = std::move(kept);
@@ -514,7 +514,7 @@ std::vector<InvariantCheck> commonChecks(const PhaseContext& ctx, const Snapshot
     std::vector<char> off(static_cast<size_t>(mesh.vertexCount()));
     tbb::parallel_for(Index(0), mesh.vertexCount(), [&](Index v) {
         const MeshVertex& x = m.vertex(v);
-        const SurfacePoint sp = m.surface().evaluate(x.preimage);
+        const SurfacePoint sp = m.surface().evaluateFirstOrder(x.preimage);
         const Vec3 expected = sp.position + x.normalOffset * sp.normal();
         off[static_cast<size_t>(v)] = !((mesh.position(v) - expected).norm() <= tol);
     });

@@ -73,9 +73,10 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 double lo = 0.0, hi = 1.0;
                 std::optional<MeshVertex> root;
                 bool failed = false, converged = false;
+                const ConsistentMesh::Segment xy = m.segment(px, py);
                 for (int it = 0; it < maxIterations; ++it) {
                     const double mid = 0.5 * (lo + hi);
-                    const std::optional<Preimage> p = m.interpolate(px, py, mid);
+                    const std::optional<Preimage> p = xy.at(mid);
                     if (!p) {
                         failed = true;
                         break;

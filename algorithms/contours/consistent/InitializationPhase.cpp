@@ -20,10 +20,13 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
     const int phase = s.phaseIndex;
     // Step 1-3: subdivide once (the Catmull-Clark domain already is), split
     // quads, move to the limit (SurfaceTessellation at level 1).
-    const SurfaceTessellation t = tessellate(*surface, 1);
+    // The tessellation (and its surface points, f and derivatives at every
+    // vertex) depends on the surface only: shared by every view.
+    const std::shared_ptr<const SurfaceTessellation> tessellation = sharedTessellation(surface, 1);
+    const SurfaceTessellation& t = *tessellation;
     std::vector<MeshVertex> initial(t.preimages.size());
     tbb::parallel_for(size_t(0), t.preimages.size(), [&](size_t i) {
-        initial[i] = m.evaluate(t.preimages[i]);
+        initial[i] = m.evaluated(t.preimages[i], t.points[i]);
         initial[i].phase = phase;
     });
     m.reserve(static_cast<Index>(initial.size()), t.mesh->faceCount());

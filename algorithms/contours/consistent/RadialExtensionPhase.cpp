@@ -219,7 +219,8 @@ private:
     double h(Index p, const Vec3& position) const {
         return radialPlaneDistance(m_.camera(), m_.vertex(p), position);
     }
-    double h(Index p, const Preimage& u) const { return h(p, m_.surface().evaluate(u).position); }
+    // The bisection below needs positions only (evaluate()'s same bits).
+    double h(Index p, const Preimage& u) const { return h(p, m_.surface().evaluatePosition(u)); }
 
     // Root of h_p on the segment a-b in parameter space (appendix B), or
     // nothing when h_p does not change sign, a chart is missing or the
@@ -230,9 +231,10 @@ private:
         if (!(ha * hb <= 0.0))
             return std::nullopt;
         double lo = 0.0, hi = 1.0;
+        const ConsistentMesh::Segment ab = m_.segment(a, b);
         for (int it = 0; it < set_.maxIterations; ++it) {
             const double mid = 0.5 * (lo + hi);
-            const std::optional<Preimage> u = m_.interpolate(a, b, mid);
+            const std::optional<Preimage> u = ab.at(mid);
             if (!u)
                 return std::nullopt;
             const double hm = h(p, *u);
