@@ -1,5 +1,6 @@
 #include "contours/consistent/ContourCuspSearch.h"
 
+#include "contours/consistent/IllinoisBracket.h"
 #include "surface/SurfaceFields.h"
 
 #include <cmath>
@@ -15,24 +16,23 @@ std::optional<ContourPoint> contourPointOnFan(const ConsistentMesh& m, Index o, 
     if (!q)
         return std::nullopt;
     ++stats.evaluations;
-    double flo = vo.g, fhi = orientation(m.surface().evaluate(*q), m.camera());
+    const double flo = vo.g, fhi = orientation(m.surface().evaluate(*q), m.camera());
     // g must change sign once on O-S(s); otherwise A-B itself crosses g = 0
     // (a sign change the initialization's 10 samples missed).
     if (!(flo * fhi < 0.0))
         return std::nullopt;
-    double lo = 0.0, hi = 1.0;
-    int side = 0;
+    IllinoisBracket r{0.0, 1.0, flo, fhi};
     ContourPoint best;
     best.s = s;
     SurfacePoint bestPoint;
     double bestG = std::numeric_limits<double>::infinity();
     bool converged = false;
-    for (int it = 0; it < options.maxRootIterations && hi - lo > 1e-15; ++it) {
+    for (int it = 0; it < options.maxRootIterations && r.hi - r.lo > 1e-15; ++it) {
         // Regula falsi, Illinois variant (the retained end's value is halved
         // when the same end is kept twice), falling back to bisection.
-        double t = (lo * fhi - hi * flo) / (fhi - flo);
-        if (!(t > lo && t < hi))
-            t = 0.5 * (lo + hi);
+        double t = r.falsePosition();
+        if (!(t > r.lo && t < r.hi))
+            t = 0.5 * (r.lo + r.hi);
         const std::optional<Preimage> p = m.interpolate(vo.preimage, *q, t);
         if (!p)
             return std::nullopt;
@@ -49,19 +49,7 @@ std::optional<ContourPoint> contourPointOnFan(const ConsistentMesh& m, Index o, 
             converged = true;
             break;
         }
-        if ((f > 0.0) == (flo > 0.0)) {
-            lo = t;
-            flo = f;
-            if (side == -1)
-                fhi *= 0.5;
-            side = -1;
-        } else {
-            hi = t;
-            fhi = f;
-            if (side == 1)
-                flo *= 0.5;
-            side = 1;
-        }
+        r.keep(t, f, (f > 0.0) == (r.flo > 0.0));
     }
     if (!std::isfinite(bestG))
         return std::nullopt;

@@ -1,6 +1,7 @@
 // Vertex wiggling in parameter space (Bénard 2014 §6.4; notes §2.4.3).
 #include "contours/consistent/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/IllinoisBracket.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
 #include "contours/consistent/RadialTriangles.h"
@@ -84,10 +85,9 @@ struct WiggleStats {
 std::optional<MeshVertex> radialRoot(const ConsistentMesh& m, const MeshVertex& p,
                                      const Preimage& a, double ha, const Preimage& b, double hb,
                                      double tolerance, int maxIterations) {
-    double lo = 0.0, hi = 1.0;
-    int side = 0;
+    IllinoisBracket r{0.0, 1.0, ha, hb};
     for (int it = 0; it < maxIterations; ++it) {
-        const double t = (lo * hb - hi * ha) / (hb - ha);
+        const double t = r.falsePosition();
         const std::optional<Preimage> u = m.interpolate(a, b, t);
         if (!u)
             return std::nullopt;
@@ -96,19 +96,7 @@ std::optional<MeshVertex> radialRoot(const ConsistentMesh& m, const MeshVertex& 
         const double h = radialPlaneDistance(m.camera(), p, x.position);
         if (std::abs(h) <= tolerance)
             return x;
-        if ((h < 0.0) == (ha < 0.0)) {
-            lo = t;
-            ha = h;
-            if (side == -1)
-                hb *= 0.5;
-            side = -1;
-        } else {
-            hi = t;
-            hb = h;
-            if (side == 1)
-                ha *= 0.5;
-            side = 1;
-        }
+        r.keep(t, h, (h < 0.0) == (r.flo < 0.0));
     }
     return std::nullopt;
 }
