@@ -75,12 +75,15 @@ std::vector<Snapshot> runViews(const std::shared_ptr<const PolygonMesh>& cage, c
     const bool paperOnly = !fineOffsets && !flipPairs;
     for (const char* extension :
          {"vertex-removal", "patch-search", "radial-keep-consistency", "radial-fan-sequences",
-          "radial-cusp-opposite-edge", "radial-cusp-both-sides", "patch-contour-slide"})
+          "radial-cusp-opposite-edge", "radial-cusp-both-sides", "patch-contour-slide",
+          "patch-new-radial-ends"})
         if (paperOnly)
             p.set(extension, false);
     if (paperOnly) {
         p.set("normal-wiggle-pair-offsets", 0);
-        p.set("cusp-contour-samples", 0); // §6.2 d's corner test
+        p.set("extension-cusp-push-depth", 0);
+        p.set("cusp-contour-samples", 0);   // §6.2 d's corner test
+        p.set("crossing-search-rounds", 1); // §6.1's single sign-crossing pass
     }
     return runAll(cage, camera, p);
 }
@@ -176,6 +179,29 @@ void classifyInconsistent(const Snapshot& s, long long (&counts)[kClassCount]) {
     }
 }
 
+// An option switched on, against the same view with it off: every
+// post-condition of the on run holds (Debug enforces them in the phases),
+// every normal offset stays within its bound, and the view ends with no more
+// inconsistent faces. Adds the final counts to `without` and `with`, and
+// counts the views that end better. The caller checks
+// QTest::currentTestFailed().
+void compareOnOff(const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun,
+                  size_t view, double& without, double& with, int& better) {
+    for (const Snapshot& s : onRun)
+        for (const InvariantCheck& c : s.invariants)
+            QVERIFY2(c.violations == 0,
+                     qPrintable(QString::fromStdString("view " + std::to_string(view) + ", " +
+                                                       s.phaseName + ": " + c.name)));
+    QVERIFY(largestOffsetRatio(after(onRun, "normal-wiggle")) <= 1.0 + 1e-9);
+    const double a = offRun.back().counter("inconsistent faces", -1.0);
+    const double b = onRun.back().counter("inconsistent faces", -1.0);
+    QVERIFY(a >= 0.0 && b >= 0.0);
+    QVERIFY2(b <= a, qPrintable(QString("view %1: %2 -> %3").arg(view).arg(a).arg(b)));
+    better += b < a;
+    without += a;
+    with += b;
+}
+
 struct Tally {
     double inconsistent[kPhaseCount] = {}, faces[kPhaseCount] = {}, worst[kPhaseCount] = {};
     double offsetRatio = 0.0;
@@ -259,19 +285,31 @@ private slots:
         // spot without flip pairs 39 (0.0494 %), the rest unchanged. With
         // cusp-contour-samples 32 on (lead, session 7: more of the true
         // cusps, so more of the hard faces at cusps): spot 39 (0.0489 %),
-        // spot without flip pairs 43 (0.0540 %), the rest unchanged.
+        // spot without flip pairs 43 (0.0540 %), the rest unchanged. With
+        // extension-cusp-push-depth 5 (session 8; the tree then had other
+        // helpers' changes in progress; with depth 0 spot 37 and bumpy torus
+        // 15, see cuspRadialEndPush): spot 25 (0.0313 %), bob 12 (0.0114 %),
+        // spot without flip pairs 28 (0.0352 %), bumpy torus 11 (0.0368 %,
+        // above its ceiling, as with depth 0). Session 8 merged (cusp
+        // pushes, extension-push-every-end-final, patch-new-radial-ends,
+        // crossing-search-rounds 4): spot 23 (0.0288 %), bob 5 (0.0047 %),
+        // spot without flip pairs 26 (0.0326 %), bumpy torus 11 (0.0368 %;
+        // 6 with crossing-search-rounds 1, whose meshes missed a double
+        // crossing in views 4 and 21 and strayed 1.6 px from the true
+        // contour: the ceiling follows the correct topology), the rest
+        // unchanged; the paper-only rows set crossing-search-rounds 1.
         QTest::addRow("sphere") << QString("sphere") << 0.0 << true << true;
         QTest::addRow("torus") << QString("torus") << 0.0 << true << true;
-        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.034 << true << true;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.037 << true << true;
         // Cusp radial edges on the opposite edge (radial-cusp-opposite-edge,
         // session 6): spot 0.113 % -> 0.092 % (89 -> 73 faces) without
         // patch-search, 0.081 % -> 0.061 % (64 -> 48) with it; one radial
         // edge per side at ambiguous cusps (radial-cusp-both-sides): 41 ->
         // 39 faces.
-        QTest::addRow("spot") << QString("spot") << 0.049 << true << true;
-        QTest::addRow("bob") << QString("bob") << 0.017 << true << true;
+        QTest::addRow("spot") << QString("spot") << 0.03 << true << true;
+        QTest::addRow("bob") << QString("bob") << 0.005 << true << true;
         QTest::addRow("torus, no flip pairs") << QString("torus") << 0.0 << true << false;
-        QTest::addRow("spot, no flip pairs") << QString("spot") << 0.055 << true << false;
+        QTest::addRow("spot, no flip pairs") << QString("spot") << 0.034 << true << false;
         QTest::addRow("torus, paper only") << QString("torus") << 0.235 << false << false;
         QTest::addRow("bumpy-torus, paper only")
             << QString("bumpy-torus") << 0.17 << false << false;
@@ -285,9 +323,11 @@ private slots:
         // 0.16 %). With patch-radial-ends on (lead): torus 0, spot 9
         // (0.0485 %), the paper-only rows unchanged. With
         // cusp-contour-samples 32 on (session 7): spot 10 (0.0533 %).
+        // Session 8 (radial-end pushes, new radial ends, crossing rounds):
+        // spot 4 (0.0213 %), the rest unchanged.
         QTest::addRow("sphere") << QString("sphere") << 0.0 << true << true;
         QTest::addRow("torus") << QString("torus") << 0.0 << true << true;
-        QTest::addRow("spot") << QString("spot") << 0.054 << true << true;
+        QTest::addRow("spot") << QString("spot") << 0.025 << true << true;
         QTest::addRow("torus, paper only") << QString("torus") << 0.24 << false << false;
         QTest::addRow("bumpy-torus, paper only")
             << QString("bumpy-torus") << 0.175 << false << false;
@@ -308,7 +348,9 @@ private slots:
         const auto cage = loadShape("spot");
         std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
 #ifndef __OPTIMIZE__
-        views.resize(6);
+        // Since session 8's radial-end pushes, view 13 is the one view of
+        // spot where a pair still moves (1 pair; views 0-5 have none).
+        views = {views[13]};
 #endif
         const Method& m = *findMethod("consistent");
         const auto run = [&](const Camera& camera, int pairOffsets) {
@@ -325,28 +367,117 @@ private slots:
         int better = 0;
         for (size_t v = 0; v < views.size(); ++v) {
             const std::vector<Snapshot> offRun = run(views[v], 0), onRun = run(views[v], 24);
-            for (const Snapshot& s : onRun)
-                for (const InvariantCheck& c : s.invariants)
-                    QVERIFY2(c.violations == 0,
-                             qPrintable(QString::fromStdString("view " + std::to_string(v) + ", " +
-                                                               s.phaseName + ": " + c.name)));
+            compareOnOff(offRun, onRun, v, without, with, better);
+            if (QTest::currentTestFailed())
+                return;
             const Snapshot& off = after(offRun, "normal-wiggle");
             const Snapshot& on = after(onRun, "normal-wiggle");
-            QVERIFY(largestOffsetRatio(on) <= 1.0 + 1e-9);
-            const double a = offRun.back().counter("inconsistent faces", -1.0);
-            const double b = onRun.back().counter("inconsistent faces", -1.0);
-            QVERIFY(a >= 0.0 && b >= 0.0);
-            QVERIFY2(b <= a, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(a).arg(b)));
             QCOMPARE(off.counter("vertex pairs moved", -1.0), 0.0);
-            better += b < a;
-            without += a;
-            with += b;
             pairs += on.counter("vertex pairs moved", 0.0);
         }
         qInfo("spot, %d views: final inconsistent faces %.0f without normal-wiggle pairs, %.0f "
               "with them (%d views better, %.0f pairs moved)",
               static_cast<int>(views.size()), without, with, better, pairs);
         QVERIFY(pairs > 0.0);
+        QVERIFY(better > 0);
+    }
+
+    // extension-cusp-push-depth (an extension of §6.4 i, radial edge
+    // extension): the far end of a cusp's radial edge that still touches an
+    // inconsistent face is pushed along the cusp's radial curve through
+    // several faces (flipping the edges crossed), in radial-extension and
+    // again after the normal wiggle. Against the same run with depth 0: no
+    // view ends with more inconsistent faces, some end with fewer, the
+    // faces at a cusp's radial end decrease, every post-condition holds
+    // (Debug enforces them in the phases), offsets stay within bounds.
+    void cuspRadialEndPush_data() {
+        QTest::addColumn<QString>("shapeName");
+        QTest::addRow("spot") << QString("spot");
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus");
+    }
+    void cuspRadialEndPush() {
+        QFETCH(QString, shapeName);
+        const auto cage = loadShape(shapeName.toStdString());
+        std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+#ifndef __OPTIMIZE__
+        views.resize(6);
+#endif
+        const Method& m = *findMethod("consistent");
+        const auto run = [&](const Camera& camera, int depth) {
+            ParameterSet p = ParameterSet::defaults(m.parameters);
+            p.set("surface", std::string("catmull-clark"));
+            p.set("extension-cusp-push-depth", depth);
+            return runAll(cage, camera, p);
+        };
+        const int depth = ParameterSet::defaults(m.parameters).getInt("extension-cusp-push-depth");
+        QVERIFY(depth > 0);
+        double without = 0.0, with = 0.0, pushed = 0.0;
+        long long endsWithout = 0, endsWith = 0;
+        int better = 0;
+        for (size_t v = 0; v < views.size(); ++v) {
+            const std::vector<Snapshot> offRun = run(views[v], 0), onRun = run(views[v], depth);
+            compareOnOff(offRun, onRun, v, without, with, better);
+            if (QTest::currentTestFailed())
+                return;
+            const Snapshot& on = after(onRun, "normal-wiggle");
+            QCOMPARE(after(offRun, "radial-extension").counter("cusp radial ends: pushed", -1.0),
+                     0.0);
+            QCOMPARE(after(offRun, "normal-wiggle")
+                         .counter("cusp radial ends pushed (extension-cusp-push-final)", -1.0),
+                     0.0);
+            long long offClasses[kClassCount] = {}, onClasses[kClassCount] = {};
+            classifyInconsistent(after(offRun, "normal-wiggle"), offClasses);
+            classifyInconsistent(on, onClasses);
+            endsWithout += offClasses[kCuspRadialEnd];
+            endsWith += onClasses[kCuspRadialEnd];
+            pushed += after(onRun, "radial-extension").counter("cusp radial ends: pushed", 0.0) +
+                      on.counter("cusp radial ends pushed (extension-cusp-push-final)", 0.0);
+        }
+        qInfo("%s, %d views: final inconsistent faces %.0f with extension-cusp-push-depth 0, "
+              "%.0f with %d (%d views better, %.0f ends pushed; faces at a cusp's radial end "
+              "%lld -> %lld)",
+              qPrintable(shapeName), static_cast<int>(views.size()), without, with, depth, better,
+              pushed, endsWithout, endsWith);
+        QVERIFY(pushed > 0.0);
+        QVERIFY(better > 0);
+        QVERIFY(endsWith < endsWithout);
+    }
+
+    // extension-push-every-end-final (ours): after the cusps' final push,
+    // the far end of every radial edge still touching an inconsistent face is
+    // pushed the same way, last. Against the same run without it: no view
+    // worse, some better, pushes counted apart from the cusps', every
+    // post-condition holds (Debug enforces them in the phases).
+    // Measured (26 views): bob 12 -> 5 faces, spot 24 -> 23, bigguy 149 -> 130.
+    void everyRadialEndPush() {
+        const auto cage = loadShape("bob");
+        std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+#ifndef __OPTIMIZE__
+        views.resize(3); // views 0 and 2 gain (2 -> 0 faces each)
+#endif
+        const Method& m = *findMethod("consistent");
+        const auto run = [&](const Camera& camera, bool every) {
+            ParameterSet p = ParameterSet::defaults(m.parameters);
+            p.set("surface", std::string("catmull-clark"));
+            p.set("extension-push-every-end-final", every);
+            return runAll(cage, camera, p);
+        };
+        QVERIFY(ParameterSet::defaults(m.parameters).getBool("extension-push-every-end-final"));
+        double without = 0.0, with = 0.0, pushed = 0.0;
+        int better = 0;
+        for (size_t v = 0; v < views.size(); ++v) {
+            const std::vector<Snapshot> offRun = run(views[v], false), onRun = run(views[v], true);
+            compareOnOff(offRun, onRun, v, without, with, better);
+            if (QTest::currentTestFailed())
+                return;
+            const char* counter = "other radial ends pushed (extension-push-every-end-final)";
+            QCOMPARE(after(offRun, "normal-wiggle").counter(counter, -1.0), 0.0);
+            pushed += after(onRun, "normal-wiggle").counter(counter, 0.0);
+        }
+        qInfo("bob, %d views: final inconsistent faces %.0f without pushes of every radial end, "
+              "%.0f with them (%d views better, %.0f ends pushed)",
+              static_cast<int>(views.size()), without, with, better, pushed);
+        QVERIFY(pushed > 0.0);
         QVERIFY(better > 0);
     }
 

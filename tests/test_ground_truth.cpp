@@ -6,11 +6,14 @@
 #include "DenseGroundTruth.h"
 #include "camera/Facing.h"
 #include "mesh/MeshReader.h"
+#include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 
 #include <QtTest>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 
 using namespace contour;
@@ -43,6 +46,78 @@ std::shared_ptr<const PolygonMesh> comparisonCage(const QString& name, int resol
     return name == "spot"  ? spotCage()
            : name == "bob" ? sampleCage("bob_controlmesh.obj")
                            : shape(name.toStdString(), resolution);
+}
+
+// Pairs of the method's cusps closer to each other than the ground truth's
+// lattice step next to them (the longest of the three lattice segments of
+// its contour around the one nearest to the pair), with no ground-truth cusp
+// within that step: DenseGroundTruth.h says a cusp pair closer than one
+// lattice step "can cancel out". Spot views 3 and 20: a pair 3.9e-5 of the
+// diagonal apart (0.03 px) beside an extraordinary vertex, one a root of κr
+// inside domain face 216 (a lattice 400 times finer over that corner of the
+// face follows κr along the contour from +1.05 through 0 to -0.57 at the
+// face's edge), the other a jump of κr over 0 (-0.57 | +0.13) across that
+// edge, where the evaluator's patches meet. Both are sign changes of κr
+// along the contour, as DenseGroundTruth defines cusps, but inside one of
+// its lattice segments. Counted apart; the raw cusp counts stay as measured.
+int subLatticeCuspPairs(const GroundTruth& truth, const Snapshot& snapshot) {
+    const Field* field = snapshot.field(fields::kCusp);
+    if (!field || !field->labels())
+        return 0;
+    std::vector<Vec3> cusps;
+    for (Index v = 0; v < snapshot.mesh->vertexCount(); ++v)
+        if ((*field->labels())[static_cast<size_t>(v)])
+            cusps.push_back(snapshot.mesh->position(v));
+    // The lattice step of the ground truth's contour next to p.
+    const auto step = [&](const Vec3& p) {
+        double best = std::numeric_limits<double>::infinity(), length = 0.0;
+        for (const GroundTruthLoop& loop : truth.loops) {
+            const size_t n = loop.points.size();
+            if (n < 2)
+                continue;
+            for (size_t k = 0; k + (loop.closed ? 0 : 1) < n; ++k) {
+                const Vec3 a = loop.points[k], ab = loop.points[(k + 1) % n] - a;
+                const double t = ab.squaredNorm() > 0.0
+                                     ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
+                                     : 0.0;
+                const double d = (a + t * ab - p).norm();
+                if (d >= best)
+                    continue;
+                best = d;
+                length = 0.0;
+                for (const size_t j : {(k + n - 1) % n, k, (k + 1) % n})
+                    length = std::max(length, (loop.points[(j + 1) % n] - loop.points[j]).norm());
+            }
+        }
+        return length;
+    };
+    // No step is longer than the longest lattice segment: farther pairs are
+    // skipped without the search above (it is slow in unoptimized builds).
+    double longest = 0.0;
+    for (const GroundTruthLoop& loop : truth.loops) {
+        const size_t n = loop.points.size();
+        for (size_t k = 0; k + (loop.closed ? 0 : 1) < n; ++k)
+            longest = std::max(longest, (loop.points[(k + 1) % n] - loop.points[k]).norm());
+    }
+    std::vector<char> used(cusps.size(), 0);
+    int pairs = 0;
+    for (size_t i = 0; i < cusps.size(); ++i)
+        for (size_t j = i + 1; j < cusps.size() && !used[i]; ++j) {
+            if (used[j] || (cusps[i] - cusps[j]).norm() >= longest)
+                continue;
+            const Vec3 mid = 0.5 * (cusps[i] + cusps[j]);
+            const double h = step(mid);
+            if ((cusps[i] - cusps[j]).norm() >= h)
+                continue;
+            bool seen = false;
+            for (const GroundTruthCusp& c : truth.cusps)
+                seen = seen || (c.position - mid).norm() < h;
+            if (seen)
+                continue;
+            used[i] = used[j] = 1;
+            ++pairs;
+        }
+    return pairs;
 }
 
 } // namespace
@@ -237,18 +312,23 @@ void TestGroundTruth::consistentAgainstGroundTruth_data() {
     QTest::addColumn<int>("minLoopsPercent");
     QTest::addColumn<int>("minCuspsPercent");
     QTest::addColumn<int>("minFacesPercent"); // face sets within kFaceTolerancePixels
-    // Measured (N = 64, 26 + 10 views): loops 100 % on every shape but spot
-    // (31/36); cusps 100 % on sphere, ellipsoid, torus, bob, 35/36 bumpy
-    // torus, 31/36 spot with cusp-contour-samples 32 (session 7; the
-    // paper's corner test alone gave 50 %, 19 % and 83 % on the last three:
-    // it misses cusp pairs inside one face); crossed-face sets within 1 px
-    // 36/36 on all but spot (26/36) (exactly: 36, 34, 36, 28, 9, 26 of 36).
-    QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100 << 100;
-    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100 << 100;
-    QTest::newRow("torus") << QString("torus") << 16 << 100 << 100 << 100;
-    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 95 << 100;
-    QTest::newRow("spot") << QString("spot") << 0 << 80 << 85 << 70;
-    QTest::newRow("bob") << QString("bob") << 0 << 100 << 100 << 100;
+    // Cusp counts leaving out the method's pairs closer than one lattice
+    // step of the ground truth, where it has no cusp (subLatticeCuspPairs).
+    QTest::addColumn<int>("minResolvedCuspsPercent");
+    // Measured (N = 64, 26 + 10 views, session 8 with crossing-search-rounds
+    // 4): loops 100 % on every shape (spot was 31/36 with the paper's single
+    // sign-crossing pass); cusps 100 % on sphere, ellipsoid, torus, bob, 35/36
+    // bumpy torus (view 5: the cusp edge from the odd corner would cross a
+    // third domain face, no chart), 34/36 spot (was 31/36; views 3 and 20:
+    // a pair below the lattice's resolution, see subLatticeCuspPairs; 36/36
+    // with it left out); crossed-face sets within 1 px 36/36 on all but spot
+    // (29/36, was 26/36) (exactly: 36, 34, 36, 28, 10, 26 of 36).
+    QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100 << 100 << 100;
+    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100 << 100 << 100;
+    QTest::newRow("torus") << QString("torus") << 16 << 100 << 100 << 100 << 100;
+    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 95 << 100 << 95;
+    QTest::newRow("spot") << QString("spot") << 0 << 100 << 94 << 80 << 100;
+    QTest::newRow("bob") << QString("bob") << 0 << 100 << 100 << 100 << 100;
 }
 
 // Issue 4, "Validation against an independent answer": the consistent
@@ -261,13 +341,14 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     QFETCH(int, minLoopsPercent);
     QFETCH(int, minCuspsPercent);
     QFETCH(int, minFacesPercent);
+    QFETCH(int, minResolvedCuspsPercent);
     const auto cage = comparisonCage(name, resolution);
     const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
     ParameterSet parameters;
     parameters.set("surface", std::string("catmull-clark"));
     const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
     int sameLoops = 0, sameFaces = 0, sameFacesWithin = 0, sameCusps = 0, truthCusps = 0,
-        methodCusps = 0, mismatchesBeyond = 0;
+        methodCusps = 0, mismatchesBeyond = 0, sameResolvedCusps = 0, subLatticePairs = 0;
     long long onlyTruth = 0, onlyMethod = 0, both = 0;
     double jaccard = 0.0, seconds = 0.0, worstMismatch = 0.0;
     for (size_t v = 0; v < views.size(); ++v) {
@@ -283,6 +364,9 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
         worstMismatch = std::max(worstMismatch, c.worstMismatchPixels);
         mismatchesBeyond += c.mismatchesBeyond;
         sameCusps += c.cuspCountsMatch();
+        const int pairs = subLatticeCuspPairs(truth, snapshot);
+        subLatticePairs += pairs;
+        sameResolvedCusps += c.methodCusps - 2 * pairs == c.truthCusps;
         truthCusps += c.truthCusps;
         methodCusps += std::max(0, c.methodCusps);
         onlyTruth += c.facesOnlyInTruth;
@@ -310,11 +394,16 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
           "faces farther than %.1f px",
           qPrintable(name), kFaceTolerancePixels, sameFacesWithin, n, 100.0 * sameFacesWithin / n,
           worstMismatch, mismatchesBeyond, kFaceTolerancePixels);
+    qInfo("%s, consistent: cusp counts match in %d/%d views (%.0f%%) when the method's %d cusp "
+          "pairs closer than a ground-truth lattice step, where it has none, are left out",
+          qPrintable(name), sameResolvedCusps, n, 100.0 * sameResolvedCusps / n, subLatticePairs);
     // The floors were measured on the full comparison; the coarser lattice of
     // unoptimized builds only checks the shapes whose answer is exact.
     if (kComparisonSamples == 64 || name == "sphere" || name == "ellipsoid") {
         QVERIFY2(100 * sameLoops >= minLoopsPercent * n, "fewer views with matching loop counts");
         QVERIFY2(100 * sameCusps >= minCuspsPercent * n, "fewer views with matching cusp counts");
+        QVERIFY2(100 * sameResolvedCusps >= minResolvedCuspsPercent * n,
+                 "fewer views with matching cusp counts up to sub-lattice pairs");
     }
     // The coarser lattice's own chords are longer than the tolerance.
     if (kComparisonSamples == 64)

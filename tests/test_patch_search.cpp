@@ -12,6 +12,7 @@
 #include "pipeline/FieldNames.h"
 
 #include <QtTest>
+#include <algorithm>
 #include <stdexcept>
 
 using namespace contour;
@@ -25,13 +26,14 @@ std::shared_ptr<const PolygonMesh> loadShape(const std::string& name) {
 
 PhaseRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
                  bool patchSearch, bool cornerCharts = false, bool radialEnds = false,
-                 bool contourSlide = true) {
+                 bool contourSlide = true, bool newRadialEnds = true) {
     const Method& m = *findMethod("consistent");
     ParameterSet p = ParameterSet::defaults(m.parameters);
     p.set("patch-search", patchSearch);
     p.set("chart-vertex-rings", cornerCharts);
     p.set("patch-radial-ends", radialEnds);
     p.set("patch-contour-slide", contourSlide);
+    p.set("patch-new-radial-ends", newRadialEnds);
     Runner runner(m, makeInputSnapshot(cage), camera, p);
     // A phase that fails (a PhaseError) fails the slot, with its message.
     runner.runToEnd();
@@ -65,6 +67,26 @@ std::vector<Camera> views(const PolygonMesh& cage) {
     return all;
 }
 
+// Final inconsistent faces without (off) and with (on) a move, summed over
+// the views; no view may end worse with the move.
+struct OffOnTally {
+    long long without = 0, with = 0;
+    int better = 0;
+    // Empty, or why the view fails.
+    QString add(const PhaseRun& off, const PhaseRun& on, size_t view) {
+        const double a = off.snapshots.back().counter("inconsistent faces", -1.0);
+        const double b = on.snapshots.back().counter("inconsistent faces", -1.0);
+        if (a < 0.0 || b < 0.0)
+            return QString("view %1: no inconsistent faces counter").arg(view);
+        if (b > a)
+            return QString("view %1: %2 -> %3").arg(view).arg(a).arg(b);
+        better += b < a;
+        without += static_cast<long long>(a);
+        with += static_cast<long long>(b);
+        return {};
+    }
+};
+
 } // namespace
 
 class TestPatchSearch : public QObject {
@@ -79,11 +101,16 @@ private slots:
         // Measured (Release, 26 views, before -> after the phase): spot
         // 184 -> 92 (0.50), bob 152 -> 38 (0.25), bumpy torus 40 -> 20
         // (0.50), torus 16 -> 12 (16 -> 0 with patch-radial-ends: see
-        // radialEndsClearTheTorus).
-        QTest::addRow("spot") << QString("spot") << 0.58;
-        QTest::addRow("bob") << QString("bob") << 0.32;
-        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.58;
-        QTest::addRow("torus") << QString("torus") << 0.8;
+        // radialEndsClearTheTorus). Session 8 (crossing-search-rounds, the
+        // cusp pushes, new radial ends): spot 191 -> 85 (0.45), bob 145 -> 31
+        // (0.21), bumpy torus 33 -> 16 (0.48), torus 4 -> 4: the earlier
+        // phases now leave the torus only faces that need patch-radial-ends
+        // (off here; radialEndsClearTheTorus), so its row checks that no
+        // view gets worse.
+        QTest::addRow("spot") << QString("spot") << 0.5;
+        QTest::addRow("bob") << QString("bob") << 0.25;
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.55;
+        QTest::addRow("torus") << QString("torus") << 1.0;
     }
 
     void neverWorseOverTheProtocol() {
@@ -236,8 +263,8 @@ private slots:
             }
             return n;
         };
-        long long slid = 0, without = 0, with = 0;
-        int better = 0;
+        long long slid = 0;
+        OffOnTally tally;
         for (size_t v = 0; v < cameras.size(); ++v) {
             const PhaseRun off = runView(cage, cameras[v], true, false, true, false);
             const PhaseRun on = runView(cage, cameras[v], true, false, true, true);
@@ -247,19 +274,60 @@ private slots:
             QCOMPARE(contourEdges(s), contourEdges(on.after("vertex-removal")));
             QCOMPARE(off.after("patch-search").counter("C vertices slid along the contour"), 0.0);
             slid += static_cast<long long>(s.counter("C vertices slid along the contour"));
-            const double a = off.snapshots.back().counter("inconsistent faces", -1.0);
-            const double b = on.snapshots.back().counter("inconsistent faces", -1.0);
-            QVERIFY(a >= 0.0 && b >= 0.0);
-            QVERIFY2(b <= a, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(a).arg(b)));
-            better += b < a;
-            without += static_cast<long long>(a);
-            with += static_cast<long long>(b);
+            const QString worse = tally.add(off, on, v);
+            QVERIFY2(worse.isEmpty(), qPrintable(worse));
         }
         qInfo("%s, %d views: %lld C vertices slid; final inconsistent faces %lld without the "
               "slide, %lld with it (%d views better)",
-              qPrintable(shapeName), static_cast<int>(cameras.size()), slid, without, with, better);
+              qPrintable(shapeName), static_cast<int>(cameras.size()), slid, tally.without,
+              tally.with, tally.better);
         QVERIFY(slid > 0);
-        QVERIFY(better > 0);
+        QVERIFY(tally.better > 0);
+    }
+
+    // With patch-new-radial-ends, a C vertex that radial edge insertion left
+    // with fewer than two radial edges gets one in the patch search: the
+    // free vertex sampled on its radial plane only, joined to it, the edge
+    // tagged radial (the radial post-conditions, |h_p(r)| within
+    // radial-root-tolerance, enforced in Debug). No view ends with more
+    // inconsistent faces than without it, some with fewer, and the radial
+    // edges grow by the counter. Measured (Release, 26 views, final
+    // inconsistent faces without -> with): spot 25 -> 24 (view 5: 3 -> 2),
+    // 3 new radial edges; bench_consistent bigguy 156 -> 149, killeroo
+    // 501 -> 492, no view worse.
+    void newRadialEndsRemoveFaces() {
+        const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
+        std::vector<Camera> cameras = views(*cage);
+#ifndef __OPTIMIZE__
+        // Debug: one view where it helps, the suite's time.
+        cameras = {Camera::views26(cage->boundingBox(), Viewport{800, 600})[5]};
+#endif
+        const auto radialEdges = [](const Snapshot& s) {
+            const auto& radial = *s.field(fields::kRadialEdge)->labels();
+            return std::count_if(radial.begin(), radial.end(), [](int r) { return r != 0; });
+        };
+        long long added = 0;
+        OffOnTally tally;
+        for (size_t v = 0; v < cameras.size(); ++v) {
+            const PhaseRun off = runView(cage, cameras[v], true, false, true, true, false);
+            const PhaseRun on = runView(cage, cameras[v], true, false, true, true, true);
+            const QString violation = firstViolation(on);
+            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
+            const Snapshot& s = on.after("patch-search");
+            const double n = s.counter("new radial edges", -1.0);
+            QVERIFY(n >= 0.0);
+            QCOMPARE(off.after("patch-search").counter("new radial edges"), 0.0);
+            QCOMPARE(static_cast<double>(radialEdges(s)),
+                     static_cast<double>(radialEdges(on.after("vertex-removal"))) + n);
+            added += static_cast<long long>(n);
+            const QString worse = tally.add(off, on, v);
+            QVERIFY2(worse.isEmpty(), qPrintable(worse));
+        }
+        qInfo("spot, %d views: %lld new radial edges; final inconsistent faces %lld without "
+              "them, %lld with them (%d views better)",
+              static_cast<int>(cameras.size()), added, tally.without, tally.with, tally.better);
+        QVERIFY(added > 0);
+        QVERIFY(tally.better > 0);
     }
 
     // Off, the phase passes the mesh through and says so.

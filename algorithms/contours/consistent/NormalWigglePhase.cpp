@@ -4,6 +4,7 @@
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
+#include "contours/consistent/RadialExtension.h"
 
 #include <algorithm>
 #include <array>
@@ -253,6 +254,21 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
         tally.tried += again.tried;
         tally.accepted += again.accepted;
     }
+    // The cusps' radial ends pushed along their radial curves once more
+    // (radial edge extension, extension-cusp-push-final), then single
+    // offsets again around what moved.
+    CuspPushCounts push;
+    if (ctx.parameters.getBool("extension-cusp-push-final")) {
+        push = pushCuspRadialEnds(ctx, m, phase);
+        if (push.moved > 0) {
+            OptimizationTally again;
+            sweepInconsistent(ctx, m, maxSweeps, true, again, [&](Index v) {
+                return wiggleAlongNormal(m, v, samples, fine, fraction, phase, st);
+            });
+            tally.tried += again.tried;
+            tally.accepted += again.accepted;
+        }
+    }
     double largest = 0.0;
     long long offVertices = 0;
     for (Index v = 0; v < m.vertexCount(); ++v) {
@@ -268,6 +284,10 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("offsets rejected (3D fold)", static_cast<double>(st.rejectedFold));
     s.setCounter("vertex pairs tried", static_cast<double>(st.pairsTried));
     s.setCounter("vertex pairs moved", static_cast<double>(st.pairsAccepted));
+    s.setCounter("cusp radial ends pushed (extension-cusp-push-final)",
+                 static_cast<double>(push.moved - push.everyEndMoved));
+    s.setCounter("other radial ends pushed (extension-push-every-end-final)",
+                 static_cast<double>(push.everyEndMoved));
 }
 
 // Notes §6.1 item 2: |α| <= the mean one-ring distance (times

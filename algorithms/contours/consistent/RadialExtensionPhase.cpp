@@ -6,6 +6,7 @@
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
+#include "contours/consistent/RadialExtension.h"
 #include "contours/consistent/RadialTriangles.h"
 
 #include <algorithm>
@@ -21,6 +22,7 @@ struct ExtensionSettings {
     int samples = 10;
     double tolerance = 0.0; // on radialPlaneDistance, absolute
     int maxIterations = 100;
+    int pushDepth = 0; // extension-cusp-push-depth
 };
 
 struct ExtensionStats {
@@ -30,6 +32,7 @@ struct ExtensionStats {
     // fold, appendix C, a face turned over in 3D.
     long long sideChange = 0, noGain = 0, labels = 0, param = 0, appendixC = 0, turned = 0;
     long long pairs = 0, pairMoves = 0;
+    long long pushTried = 0, pushMoves = 0, pushFlips = 0;
     std::array<long long, 4>
         pairRejected{}; // VBO/degenerate, param fold, appendix C, 3D // two radial ends (Fig. 16f)
 };
@@ -211,7 +214,181 @@ public:
         return true;
     }
 
+    // A cusp's radial curve leaves it along the view ray (Fig. 18e: κr = 0
+    // there, so its image moves with the cube of the distance along it), and
+    // the far end q of a cusp's radial edge lands within a hundredth of a
+    // pixel of the cusp; faces q-x-y across the cusp's image wedge are then
+    // inconsistent, and no single move of extend() (q inside its star, one
+    // flip) removes them: each step alone leaves as many. Here q is pushed
+    // out along p's radial curve through up to `pushDepth` faces, flipping
+    // each edge x-y the curve crosses beyond q (the flip of §6.4 i, repeated)
+    // and moving q into the last face reached (or into a face of the way
+    // without its flip); the move that removes the most inconsistent faces
+    // of the region, with the checks of a single move, wins (ties: the best
+    // minimum quality, then the first found, depth first). Not in the
+    // paper: §6.4 i looks one face ahead.
+    bool push(Index p, Index q) {
+        if (set_.pushDepth <= 0 || !movable(p, q))
+            return false;
+        ++stats.pushTried;
+        PushState st;
+        for (Index f : m_.vertexFaces(q)) {
+            st.absorbed.push_back(f);
+            st.faces.push_back(m_.face(f));
+        }
+        LocalEdit before(m_);
+        before.addFaces(st.absorbed);
+        pushPlain_ = before.score();
+        pushTurned_ = before.turnedOver();
+        pushBest_.reset();
+        pushBestFlips_.clear();
+        pushSearch(p, q, st, 0);
+        if (!pushBest_)
+            return false;
+        // The search rehearsed every flip; should the mesh still refuse one,
+        // the flips made are undone (the new edge of each is q-z).
+        std::vector<std::array<Index, 2>> made;
+        for (const auto& [x, y] : pushBestFlips_) {
+            const Index z = m_.oppositeVertices(x, y)[1];
+            if (!m_.flipEdge(x, y, phase_)) {
+                for (auto it = made.rbegin(); it != made.rend(); ++it)
+                    m_.flipEdge((*it)[0], (*it)[1], phase_);
+                return false;
+            }
+            made.push_back({q, z});
+        }
+        stats.pushFlips += static_cast<long long>(made.size());
+        m_.setVertex(q, *pushBest_, phase_);
+        ++stats.pushMoves;
+        return true;
+    }
+
 private:
+    // The region a push edits: its current triangles, the mesh faces they
+    // replace, and the flips made so far.
+    struct PushState {
+        std::vector<Triangle> faces;
+        std::vector<Index> absorbed;
+        std::vector<std::array<Index, 2>> flips;
+    };
+    LocalScore pushPlain_;
+    int pushTurned_ = 0;
+    std::optional<MeshVertex> pushBest_;
+    LocalScore pushBestScore_;
+    std::vector<std::array<Index, 2>> pushBestFlips_;
+
+    // Is a-b an edge of the region's triangles or of a mesh face outside it?
+    bool pushHasEdge(const PushState& st, Index a, Index b) const {
+        for (const Triangle& t : st.faces)
+            for (int i = 0; i < 3; ++i)
+                if ((t[i] == a && t[(i + 1) % 3] == b) || (t[i] == b && t[(i + 1) % 3] == a))
+                    return true;
+        for (Index f : {m_.faceOfHalfedge(a, b), m_.faceOfHalfedge(b, a)})
+            if (f != kInvalidIndex &&
+                std::find(st.absorbed.begin(), st.absorbed.end(), f) == st.absorbed.end())
+                return true;
+        return false;
+    }
+
+    // q moved to each root of h_p on `samples` segments a(s)-b(s) (s = k /
+    // samples, k in [k0, k1]) between the preimages of (a0 -> a1) and
+    // (b0 -> b1), judged on the region.
+    void pushSamples(Index p, Index q, const PushState& st, Index a0, Index a1, Index b0, Index b1,
+                     int k0, int k1) {
+        const auto pre = [&](Index v) {
+            return m_.vertex(v).preimage;
+        };
+        const VertexLabel label = m_.vertex(q).label;
+        LocalEdit before(m_), edit(m_);
+        before.addFaces(st.absorbed);
+        for (int k = k0; k <= k1; ++k) {
+            const std::optional<MeshVertex> sample =
+                curveSample(p, pre(a0), pre(a1), pre(b0), pre(b1),
+                            static_cast<double>(k) / set_.samples, label);
+            if (!sample)
+                continue;
+            const MeshVertex& v = *sample;
+            edit.clear();
+            for (const Triangle& t : st.faces)
+                edit.addFace(t);
+            edit.moveVertex(q, v);
+            LocalScore trial = edit.score();
+            trial.inconsistent -= pushPlain_.inconsistent;
+            if (trial.inconsistent >= 0 || (pushBest_ && !betterScore(trial, pushBestScore_)))
+                continue;
+            if (!edit.labelsValid() || !edit.parameterValid() ||
+                !extensionShiftable(m_, before, edit, q) || edit.turnedOver() > pushTurned_)
+                continue;
+            pushBest_ = v;
+            pushBestScore_ = trial;
+            pushBestFlips_ = st.flips;
+        }
+    }
+
+    void pushSearch(Index p, Index q, const PushState& st, int depth) {
+        const auto h0 = [&](Index v) {
+            return h(p, m_.vertex(v).position);
+        };
+        // Past the first level only the two faces of the last flip hold the
+        // curve's continuation.
+        const size_t first = depth == 0 ? 0 : st.faces.size() - 2;
+        for (size_t i = first; i < st.faces.size(); ++i) {
+            const Triangle& face = st.faces[i];
+            Triangle t = face;
+            if (std::find(t.begin(), t.end(), q) == t.end())
+                continue;
+            while (t[0] != q)
+                std::rotate(t.begin(), t.begin() + 1, t.end());
+            const Index x = t[1], y = t[2];
+            if (x == p || y == p || !(h0(x) * h0(y) < 0.0))
+                continue;
+            // q inside q-x-y, no further flip.
+            pushSamples(p, q, st, q, x, q, y, 1, set_.samples - 1);
+            if (depth >= set_.pushDepth)
+                continue;
+            // Flip x-y (faces q-x-y and y-x-z become x-z-q and y-q-z).
+            Triangle beyond{kInvalidIndex, kInvalidIndex, kInvalidIndex};
+            Index absorbedFace = kInvalidIndex;
+            for (const Triangle& u : st.faces)
+                for (int k = 0; k < 3; ++k)
+                    if (u[k] == y && u[(k + 1) % 3] == x)
+                        beyond = u;
+            if (beyond[0] == kInvalidIndex) {
+                const Index g = m_.faceOfHalfedge(y, x);
+                if (g == kInvalidIndex ||
+                    std::find(st.absorbed.begin(), st.absorbed.end(), g) != st.absorbed.end())
+                    continue;
+                beyond = m_.face(g);
+                absorbedFace = g;
+            }
+            Index z = kInvalidIndex;
+            for (Index w : beyond)
+                if (w != x && w != y)
+                    z = w;
+            // A cusp keeps its valence (Fig. 18d), tagged edges and the
+            // mesh contour's CC edges stay.
+            const bool contourEdge = m_.vertex(x).label == VertexLabel::Contour &&
+                                     m_.vertex(y).label == VertexLabel::Contour;
+            if (z == kInvalidIndex || z == q || z == p || m_.vertex(x).cusp || m_.vertex(y).cusp ||
+                m_.vertex(z).cusp || contourEdge || m_.edgeTag(x, y) != kNoTag ||
+                pushHasEdge(st, q, z))
+                continue;
+            PushState next = st;
+            if (absorbedFace != kInvalidIndex)
+                next.absorbed.push_back(absorbedFace);
+            next.faces.erase(
+                std::remove_if(next.faces.begin(), next.faces.end(),
+                               [&](const Triangle& u) { return u == face || u == beyond; }),
+                next.faces.end());
+            next.faces.push_back({x, z, q});
+            next.faces.push_back({y, q, z});
+            next.flips.push_back({x, y});
+            // q beyond x-y, in y-x-z (segments parallel to x-y).
+            pushSamples(p, q, next, x, z, y, z, 1, set_.samples - 1);
+            pushSearch(p, q, next, depth + 1);
+        }
+    }
+
     ConsistentMesh& m_;
     ExtensionSettings set_;
     int phase_;
@@ -268,24 +445,34 @@ private:
                 continue;
             const Preimage &uq = m_.vertex(q).preimage, &ux = m_.vertex(x).preimage,
                            &uy = m_.vertex(y).preimage;
-            for (int k = 1; k <= set_.samples; ++k) {
-                const double s = static_cast<double>(k) / set_.samples;
-                const auto a = m_.interpolate(uq, ux, s), b = m_.interpolate(uq, uy, s);
-                if (!a || !b)
-                    continue;
-                const auto r = root(p, *a, *b);
-                if (!r)
-                    continue;
-                MeshVertex v = m_.evaluate(*r);
-                if (v.label != label)
-                    continue;
-                v.provenance = Provenance::Wiggled;
-                v.phase = phase_;
-                out.push_back(v);
-            }
+            for (int k = 1; k <= set_.samples; ++k)
+                if (const auto v = curveSample(p, uq, ux, uq, uy,
+                                               static_cast<double>(k) / set_.samples, label))
+                    out.push_back(*v);
             break;
         }
         return out;
+    }
+
+    // The point of p's radial curve on the segment between the preimages at
+    // s along a0 -> a1 and along b0 -> b1 (appendix B paths), evaluated and
+    // marked as this phase's move; nothing when a chart is missing, h_p
+    // keeps its sign there or the point is not on `label`'s side.
+    std::optional<MeshVertex> curveSample(Index p, const Preimage& a0, const Preimage& a1,
+                                          const Preimage& b0, const Preimage& b1, double s,
+                                          VertexLabel label) {
+        const auto a = m_.interpolate(a0, a1, s), b = m_.interpolate(b0, b1, s);
+        if (!a || !b)
+            return std::nullopt;
+        const auto r = root(p, *a, *b);
+        if (!r)
+            return std::nullopt;
+        MeshVertex v = m_.evaluate(*r);
+        if (v.label != label)
+            return std::nullopt;
+        v.provenance = Provenance::Wiggled;
+        v.phase = phase_;
+        return v;
     }
 
     bool tryMoves(Index p, Index q, Index f, Index x, Index y) {
@@ -417,8 +604,7 @@ private:
     }
 };
 
-void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
-    ConsistentMesh m = reload(ctx, s);
+ExtensionSettings extensionSettings(const PhaseContext& ctx, const ConsistentMesh& m) {
     ExtensionSettings set;
     set.samples = ctx.parameters.getInt("extension-samples");
     // The radial edges' own tolerance (§6.3 g), so that an extended edge
@@ -430,6 +616,33 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
                     scale;
     if (ctx.parameters.has("radial-root-max-iterations"))
         set.maxIterations = ctx.parameters.getInt("radial-root-max-iterations");
+    set.pushDepth = ctx.parameters.getInt("extension-cusp-push-depth");
+    return set;
+}
+
+// One pass of Extender::push over the cusps' radial ends that touch an
+// inconsistent face; returns the number moved.
+long long pushCuspEnds(const PhaseContext& ctx, ConsistentMesh& m, Extender& ext,
+                       OptimizationTally* tally, bool everyEnd = false) {
+    long long accepted = 0;
+    for (const auto& [p, q] : ext.candidates()) {
+        ctx.checkCancelled();
+        if (!everyEnd && !m.vertex(p).cusp)
+            continue;
+        const std::vector<Index>& star = m.vertexFaces(q);
+        if (!std::any_of(star.begin(), star.end(),
+                         [&](Index f) { return !faceIsConsistent(m, f); }))
+            continue;
+        if (tally)
+            ++tally->tried;
+        accepted += ext.push(p, q);
+    }
+    return accepted;
+}
+
+void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
+    ConsistentMesh m = reload(ctx, s);
+    const ExtensionSettings set = extensionSettings(ctx, m);
     const int maxSweeps = ctx.parameters.getInt("extension-max-sweeps");
     Extender ext(m, set, s.phaseIndex);
     OptimizationTally tally;
@@ -470,6 +683,11 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
             ++tally.tried;
             accepted += ext.extendPair(nearEnd[ends[0]], ends[0], nearEnd[ends[1]], ends[1]);
         }
+        // Cusps' radial ends still touching inconsistent faces: pushed out
+        // through several faces (extension-cusp-push-depth), once single and
+        // pair moves stopped improving.
+        if (accepted == 0 && set.pushDepth > 0)
+            accepted += pushCuspEnds(ctx, m, ext, &tally);
         tally.accepted += accepted;
         if (accepted == 0)
             break;
@@ -499,6 +717,9 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
                      static_cast<double>(ext.stats.pairRejected[r]));
     s.setCounter("face with two radial ends: both moved", static_cast<double>(ext.stats.pairMoves));
     s.setCounter("unconverged radial roots", static_cast<double>(ext.stats.unconverged));
+    s.setCounter("cusp radial ends: pushes tried", static_cast<double>(ext.stats.pushTried));
+    s.setCounter("cusp radial ends: pushed", static_cast<double>(ext.stats.pushMoves));
+    s.setCounter("cusp radial ends: flips of pushes", static_cast<double>(ext.stats.pushFlips));
     if (m.edgeTags().empty() || s.counter("radial edges", 0.0) == 0.0)
         s.notes.push_back("radial edge extension: the mesh has no radial edges (radial edge "
                           "insertion, §6.3 g, did not run or inserted none), nothing to extend");
@@ -509,6 +730,29 @@ std::vector<InvariantCheck> checkRadialExtension(const PhaseContext& ctx, const 
 }
 
 } // namespace
+
+CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, int phase) {
+    const ExtensionSettings set = extensionSettings(ctx, m);
+    Extender ext(m, set, phase);
+    CuspPushCounts out;
+    if (set.pushDepth > 0)
+        for (int sweep = 0; sweep < ctx.parameters.getInt("extension-max-sweeps"); ++sweep)
+            if (pushCuspEnds(ctx, m, ext, nullptr) == 0)
+                break;
+    // Then every radial end (extension-push-every-end-final): last, so a
+    // push, kept only with fewer inconsistent faces, pre-empts no other move.
+    // Earlier, with the cusps' pushes, 2 views of 26 ended worse (spot).
+    const long long cuspMoves = ext.stats.pushMoves;
+    if (set.pushDepth > 0 && ctx.parameters.getBool("extension-push-every-end-final"))
+        for (int sweep = 0; sweep < ctx.parameters.getInt("extension-max-sweeps"); ++sweep)
+            if (pushCuspEnds(ctx, m, ext, nullptr, true) == 0)
+                break;
+    out.tried = ext.stats.pushTried;
+    out.moved = ext.stats.pushMoves;
+    out.everyEndMoved = ext.stats.pushMoves - cuspMoves;
+    out.flips = ext.stats.pushFlips;
+    return out;
+}
 
 void addRadialExtensionPhase(Method& m) {
     m.parameters.push_back(
@@ -531,6 +775,45 @@ void addRadialExtensionPhase(Method& m) {
                             1,
                             10000,
                             {}});
+    m.parameters.push_back(
+        {"extension-cusp-push-depth",
+         "Extension: cusp push depth",
+         "The far end q of a cusp's radial edge that still touches an inconsistent face is "
+         "pushed along the cusp's radial curve through up to this many faces, flipping each "
+         "edge the curve crosses (§6.4 i repeated; not in the paper, which looks one face "
+         "ahead). A cusp's radial curve leaves it along the view ray (Fig. 18e), so q lands "
+         "within a hundredth of a pixel of the cusp and one-face moves cannot help. Run when "
+         "single and pair moves stop improving, and again after the normal wiggle "
+         "(extension-cusp-push-final). 0: off.",
+         ParameterType::Int,
+         5,
+         0,
+         10,
+         {}});
+    m.parameters.push_back(
+        {"extension-cusp-push-final",
+         "Extension: cusp push after the normal wiggle",
+         "Pushes the cusps' radial ends again (extension-cusp-push-depth) once the normal "
+         "wiggle (§6.4, final step) is done, on the faces still inconsistent then (not in the "
+         "paper).",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
+    m.parameters.push_back(
+        {"extension-push-every-end-final",
+         "Extension: push every radial end at the end",
+         "After the cusps' final push (extension-cusp-push-final), the far ends of all radial "
+         "edges that still touch an inconsistent face are pushed the same way, each push kept "
+         "only when fewer faces are inconsistent; last, so it never pre-empts another move. "
+         "Needs extension-cusp-push-depth > 0 and extension-cusp-push-final (not in the "
+         "paper).",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
     m.phases.push_back(
         {"radial-extension",
          "§6.4 Radial Edge Extension (Fig. 15i, 16f): for a radial edge p-q whose far end q "
