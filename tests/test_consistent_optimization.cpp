@@ -13,6 +13,7 @@
 
 #include <QtTest>
 #include <cmath>
+#include <functional>
 
 using namespace contour;
 using namespace contour::consistent;
@@ -202,6 +203,38 @@ void compareOnOff(const std::vector<Snapshot>& offRun, const std::vector<Snapsho
     with += b;
 }
 
+// Each view run twice from the defaults (Catmull-Clark), with
+// configure(p, false) and configure(p, true), the pair checked by
+// compareOnOff, then by the slot's own perView(offRun, onRun). False once a
+// check failed.
+struct OnOffTotals {
+    double without = 0.0, with = 0.0;
+    int better = 0;
+};
+bool runOnOff(
+    const std::shared_ptr<const PolygonMesh>& cage, const std::vector<Camera>& views,
+    const std::function<void(ParameterSet&, bool)>& configure,
+    const std::function<void(const std::vector<Snapshot>&, const std::vector<Snapshot>&)>& perView,
+    OnOffTotals& totals) {
+    const Method& m = *findMethod("consistent");
+    for (size_t v = 0; v < views.size(); ++v) {
+        std::vector<Snapshot> runs[2];
+        for (const bool on : {false, true}) {
+            ParameterSet p = ParameterSet::defaults(m.parameters);
+            p.set("surface", std::string("catmull-clark"));
+            configure(p, on);
+            runs[on] = runAll(cage, views[v], p);
+        }
+        compareOnOff(runs[0], runs[1], v, totals.without, totals.with, totals.better);
+        if (QTest::currentTestFailed())
+            return false;
+        perView(runs[0], runs[1]);
+        if (QTest::currentTestFailed())
+            return false;
+    }
+    return true;
+}
+
 struct Tally {
     double inconsistent[kPhaseCount] = {}, faces[kPhaseCount] = {}, worst[kPhaseCount] = {};
     double offsetRatio = 0.0;
@@ -352,34 +385,28 @@ private slots:
         // spot where a pair still moves (1 pair; views 0-5 have none).
         views = {views[13]};
 #endif
-        const Method& m = *findMethod("consistent");
-        const auto run = [&](const Camera& camera, int pairOffsets) {
-            ParameterSet p = ParameterSet::defaults(m.parameters);
-            p.set("surface", std::string("catmull-clark"));
-            p.set("normal-wiggle-pair-offsets", pairOffsets);
-            // The paper's cusp test, as when the figures above were measured:
-            // with cusp-contour-samples on, Debug's first 6 views have no
-            // face a pair move fixes (10 faces either way).
-            p.set("cusp-contour-samples", 0);
-            return runAll(cage, camera, p);
-        };
-        double without = 0.0, with = 0.0, pairs = 0.0;
-        int better = 0;
-        for (size_t v = 0; v < views.size(); ++v) {
-            const std::vector<Snapshot> offRun = run(views[v], 0), onRun = run(views[v], 24);
-            compareOnOff(offRun, onRun, v, without, with, better);
-            if (QTest::currentTestFailed())
-                return;
-            const Snapshot& off = after(offRun, "normal-wiggle");
-            const Snapshot& on = after(onRun, "normal-wiggle");
-            QCOMPARE(off.counter("vertex pairs moved", -1.0), 0.0);
-            pairs += on.counter("vertex pairs moved", 0.0);
-        }
+        double pairs = 0.0;
+        OnOffTotals t;
+        const bool ok = runOnOff(
+            cage, views,
+            [](ParameterSet& p, bool on) {
+                p.set("normal-wiggle-pair-offsets", on ? 24 : 0);
+                // The paper's cusp test, as when the figures above were
+                // measured.
+                p.set("cusp-contour-samples", 0);
+            },
+            [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
+                QCOMPARE(after(offRun, "normal-wiggle").counter("vertex pairs moved", -1.0), 0.0);
+                pairs += after(onRun, "normal-wiggle").counter("vertex pairs moved", 0.0);
+            },
+            t);
+        if (!ok)
+            return;
         qInfo("spot, %d views: final inconsistent faces %.0f without normal-wiggle pairs, %.0f "
               "with them (%d views better, %.0f pairs moved)",
-              static_cast<int>(views.size()), without, with, better, pairs);
+              static_cast<int>(views.size()), t.without, t.with, t.better, pairs);
         QVERIFY(pairs > 0.0);
-        QVERIFY(better > 0);
+        QVERIFY(t.better > 0);
     }
 
     // extension-cusp-push-depth (an extension of §6.4 i, radial edge
@@ -403,43 +430,41 @@ private slots:
         views.resize(6);
 #endif
         const Method& m = *findMethod("consistent");
-        const auto run = [&](const Camera& camera, int depth) {
-            ParameterSet p = ParameterSet::defaults(m.parameters);
-            p.set("surface", std::string("catmull-clark"));
-            p.set("extension-cusp-push-depth", depth);
-            return runAll(cage, camera, p);
-        };
         const int depth = ParameterSet::defaults(m.parameters).getInt("extension-cusp-push-depth");
         QVERIFY(depth > 0);
-        double without = 0.0, with = 0.0, pushed = 0.0;
+        double pushed = 0.0;
         long long endsWithout = 0, endsWith = 0;
-        int better = 0;
-        for (size_t v = 0; v < views.size(); ++v) {
-            const std::vector<Snapshot> offRun = run(views[v], 0), onRun = run(views[v], depth);
-            compareOnOff(offRun, onRun, v, without, with, better);
-            if (QTest::currentTestFailed())
-                return;
-            const Snapshot& on = after(onRun, "normal-wiggle");
-            QCOMPARE(after(offRun, "radial-extension").counter("cusp radial ends: pushed", -1.0),
-                     0.0);
-            QCOMPARE(after(offRun, "normal-wiggle")
-                         .counter("cusp radial ends pushed (extension-cusp-push-final)", -1.0),
-                     0.0);
-            long long offClasses[kClassCount] = {}, onClasses[kClassCount] = {};
-            classifyInconsistent(after(offRun, "normal-wiggle"), offClasses);
-            classifyInconsistent(on, onClasses);
-            endsWithout += offClasses[kCuspRadialEnd];
-            endsWith += onClasses[kCuspRadialEnd];
-            pushed += after(onRun, "radial-extension").counter("cusp radial ends: pushed", 0.0) +
-                      on.counter("cusp radial ends pushed (extension-cusp-push-final)", 0.0);
-        }
+        OnOffTotals t;
+        const bool ok = runOnOff(
+            cage, views,
+            [&](ParameterSet& p, bool on) { p.set("extension-cusp-push-depth", on ? depth : 0); },
+            [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
+                const Snapshot& on = after(onRun, "normal-wiggle");
+                QCOMPARE(
+                    after(offRun, "radial-extension").counter("cusp radial ends: pushed", -1.0),
+                    0.0);
+                QCOMPARE(after(offRun, "normal-wiggle")
+                             .counter("cusp radial ends pushed (extension-cusp-push-final)", -1.0),
+                         0.0);
+                long long offClasses[kClassCount] = {}, onClasses[kClassCount] = {};
+                classifyInconsistent(after(offRun, "normal-wiggle"), offClasses);
+                classifyInconsistent(on, onClasses);
+                endsWithout += offClasses[kCuspRadialEnd];
+                endsWith += onClasses[kCuspRadialEnd];
+                pushed +=
+                    after(onRun, "radial-extension").counter("cusp radial ends: pushed", 0.0) +
+                    on.counter("cusp radial ends pushed (extension-cusp-push-final)", 0.0);
+            },
+            t);
+        if (!ok)
+            return;
         qInfo("%s, %d views: final inconsistent faces %.0f with extension-cusp-push-depth 0, "
               "%.0f with %d (%d views better, %.0f ends pushed; faces at a cusp's radial end "
               "%lld -> %lld)",
-              qPrintable(shapeName), static_cast<int>(views.size()), without, with, depth, better,
-              pushed, endsWithout, endsWith);
+              qPrintable(shapeName), static_cast<int>(views.size()), t.without, t.with, depth,
+              t.better, pushed, endsWithout, endsWith);
         QVERIFY(pushed > 0.0);
-        QVERIFY(better > 0);
+        QVERIFY(t.better > 0);
         QVERIFY(endsWith < endsWithout);
     }
 
@@ -456,29 +481,25 @@ private slots:
         views.resize(3); // views 0 and 2 gain (2 -> 0 faces each)
 #endif
         const Method& m = *findMethod("consistent");
-        const auto run = [&](const Camera& camera, bool every) {
-            ParameterSet p = ParameterSet::defaults(m.parameters);
-            p.set("surface", std::string("catmull-clark"));
-            p.set("extension-push-every-end-final", every);
-            return runAll(cage, camera, p);
-        };
         QVERIFY(ParameterSet::defaults(m.parameters).getBool("extension-push-every-end-final"));
-        double without = 0.0, with = 0.0, pushed = 0.0;
-        int better = 0;
-        for (size_t v = 0; v < views.size(); ++v) {
-            const std::vector<Snapshot> offRun = run(views[v], false), onRun = run(views[v], true);
-            compareOnOff(offRun, onRun, v, without, with, better);
-            if (QTest::currentTestFailed())
-                return;
-            const char* counter = "other radial ends pushed (extension-push-every-end-final)";
-            QCOMPARE(after(offRun, "normal-wiggle").counter(counter, -1.0), 0.0);
-            pushed += after(onRun, "normal-wiggle").counter(counter, 0.0);
-        }
+        const char* counter = "other radial ends pushed (extension-push-every-end-final)";
+        double pushed = 0.0;
+        OnOffTotals t;
+        const bool ok = runOnOff(
+            cage, views,
+            [](ParameterSet& p, bool on) { p.set("extension-push-every-end-final", on); },
+            [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
+                QCOMPARE(after(offRun, "normal-wiggle").counter(counter, -1.0), 0.0);
+                pushed += after(onRun, "normal-wiggle").counter(counter, 0.0);
+            },
+            t);
+        if (!ok)
+            return;
         qInfo("bob, %d views: final inconsistent faces %.0f without pushes of every radial end, "
               "%.0f with them (%d views better, %.0f ends pushed)",
-              static_cast<int>(views.size()), without, with, better, pushed);
+              static_cast<int>(views.size()), t.without, t.with, t.better, pushed);
         QVERIFY(pushed > 0.0);
-        QVERIFY(better > 0);
+        QVERIFY(t.better > 0);
     }
 
     void optimizationOverTheProtocol() {
