@@ -390,7 +390,7 @@ private slots:
         const bool ok = runOnOff(
             cage, views,
             [](ParameterSet& p, bool on) {
-                p.set("normal-wiggle-pair-offsets", on ? 24 : 0);
+                p.set("normal-wiggle-pair-offsets", on ? 48 : 0);
                 // The paper's cusp test, as when the figures above were
                 // measured.
                 p.set("cusp-contour-samples", 0);
