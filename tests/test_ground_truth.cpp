@@ -135,6 +135,7 @@ private slots:
     void interpolatedAgainstGroundTruth();
     void consistentAgainstGroundTruth_data();
     void consistentAgainstGroundTruth();
+    void contourRefinementFollowsTheCurve();
     void crossingsAgainstGroundTruth_data();
     void crossingsAgainstGroundTruth();
     void timingOnSpot();
@@ -322,12 +323,13 @@ void TestGroundTruth::consistentAgainstGroundTruth_data() {
     // third domain face, no chart), 34/36 spot (was 31/36; views 3 and 20:
     // a pair below the lattice's resolution, see subLatticeCuspPairs; 36/36
     // with it left out); crossed-face sets within 1 px 36/36 on all but spot
-    // (29/36, was 26/36) (exactly: 36, 34, 36, 28, 10, 26 of 36).
+    // (34/36 with contour-refinement, session 9; 29/36 without, 26/36 in
+    // session 7) (exactly: 36, 34, 36, 28, 11, 26 of 36).
     QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100 << 100 << 100;
     QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100 << 100 << 100;
     QTest::newRow("torus") << QString("torus") << 16 << 100 << 100 << 100 << 100;
     QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 95 << 100 << 95;
-    QTest::newRow("spot") << QString("spot") << 0 << 100 << 94 << 80 << 100;
+    QTest::newRow("spot") << QString("spot") << 0 << 100 << 94 << 94 << 100;
     QTest::newRow("bob") << QString("bob") << 0 << 100 << 100 << 100 << 100;
 }
 
@@ -409,6 +411,59 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     if (kComparisonSamples == 64)
         QVERIFY2(100 * sameFacesWithin >= minFacesPercent * n,
                  "fewer views with crossed-face sets matching within the tolerance");
+}
+
+// contour-refinement (not in the paper): contour edges straying more than
+// contour-refinement-pixels from the smooth contour are split at a root of g
+// beside their middle. On spot, the coarsest sample, the crossed-face sets
+// then match the ground truth within 1 px in more views (measured, N = 64,
+// 26 + 10 views: 29 -> 34 of 36; faces farther than 1 px 7 -> 2), with the
+// same loops and never more inconsistent faces.
+void TestGroundTruth::contourRefinementFollowsTheCurve() {
+    const auto cage = comparisonCage("spot", 0);
+    const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
+    const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
+    int sameLoops[2] = {0, 0}, sameFacesWithin[2] = {0, 0}, beyond[2] = {0, 0};
+    long long splits = 0;
+    for (size_t v = 0; v < views.size(); ++v) {
+        const GroundTruth truth = dense.compute(views[v]);
+        double inconsistent[2] = {0.0, 0.0};
+        for (int on = 0; on < 2; ++on) {
+            ParameterSet parameters;
+            parameters.set("surface", std::string("catmull-clark"));
+            if (!on)
+                parameters.set("contour-refinement-pixels", 0.0);
+            const Snapshot snapshot = runMethod("consistent", cage, views[v], parameters);
+            const TopologyComparison c = compareTopology(truth, snapshot, dense.surfacePtr(),
+                                                         &views[v], kFaceTolerancePixels);
+            sameLoops[on] += c.loopCountsMatch();
+            sameFacesWithin[on] += c.faceSetsMatchWithinTolerance();
+            beyond[on] += c.mismatchesBeyond;
+            inconsistent[on] = snapshot.counter("inconsistent faces", -1.0);
+            if (on)
+                splits += static_cast<long long>(snapshot.counter("contour edges split", 0.0));
+            else
+                QCOMPARE(snapshot.counter("contour edges split", -1.0), 0.0);
+        }
+        QVERIFY(inconsistent[0] >= 0.0);
+        QVERIFY2(inconsistent[1] <= inconsistent[0],
+                 qPrintable(QString("view %1: %2 -> %3 inconsistent faces")
+                                .arg(v)
+                                .arg(inconsistent[0])
+                                .arg(inconsistent[1])));
+    }
+    const int n = int(views.size());
+    qInfo("spot, %d views: crossed-face sets within %.1f px in %d (refinement off) -> %d (on), "
+          "faces farther than that %d -> %d, loop counts matching %d -> %d; %lld contour edges "
+          "split",
+          n, kFaceTolerancePixels, sameFacesWithin[0], sameFacesWithin[1], beyond[0], beyond[1],
+          sameLoops[0], sameLoops[1], splits);
+    QCOMPARE(sameLoops[1], sameLoops[0]);
+    QVERIFY(splits > 0);
+    if (kComparisonSamples == 64) {
+        QVERIFY(sameFacesWithin[1] > sameFacesWithin[0]);
+        QVERIFY(beyond[1] < beyond[0]);
+    }
 }
 
 void TestGroundTruth::crossingsAgainstGroundTruth_data() {

@@ -93,6 +93,7 @@ Method makeConsistentContourMethod() {
     addVertexRemovalPhase(m);
     addPatchSearchPhase(m);
     addNormalWigglePhase(m);
+    addContourRefinementPhase(m);
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);
     addSimplificationPhase(m);

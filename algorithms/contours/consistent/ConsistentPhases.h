@@ -19,6 +19,7 @@ void addEdgeSplitPhase(Method& m);           // §6.4 edge splitting
 void addVertexRemovalPhase(Method& m);       // extension of §6.4 (§6.3 h vertex deletion)
 void addPatchSearchPhase(Method& m);         // extension of §6.4: compound moves
 void addNormalWigglePhase(Method& m);        // §6.4 vertex wiggling along the normal
+void addContourRefinementPhase(Method& m);   // not in the paper: contour edges split near the curve
 void addChainingPhase(Method& m);            // §8: the contour generator as polylines
 
 } // namespace contour::consistent
