@@ -471,16 +471,18 @@ private slots:
         checkShape("sphere", shape("sphere", 8), {0.1, 72.0});
     }
     // The standard radial share counts the faces of cusps' inside regions,
-    // which get no radial edges (Fig. 18e, radial-cusp-inside-hops 1):
-    // measured worst views torus 85.4 %, spot 79.3 %.
+    // which get no radial edges (Fig. 18e, radial-cusp-inside-hops 1 and,
+    // since session 9, radial-cusp-inside-pixels 10): measured worst views
+    // torus 81.8 %, spot 73.0 % (85.4 % and 79.3 % by hops only: the
+    // larger inside regions hold more faces without radial triangles).
     void torus() {
-        checkShape("torus", shape("torus", 12), {0.07, 85.0});
+        checkShape("torus", shape("torus", 12), {0.07, 81.5});
     }
     void spot() {
         const std::string path = std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj";
         QVERIFY2(std::filesystem::exists(path), "samples/spot_control_mesh.obj is absent");
         checkShape("spot_control_mesh", std::make_shared<const PolygonMesh>(readMesh(path)),
-                   {0.07, 79.0});
+                   {0.07, 72.5});
     }
 };
 
