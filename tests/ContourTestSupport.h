@@ -36,6 +36,30 @@ struct PhaseRun {
     }
 };
 
+// The final inconsistent faces of one view run without and with a change
+// (the last snapshot of each run): totals over the views and how many views
+// end better. add() returns "" or why the view fails: a run without the
+// counter, or more faces with the change than without (no move may make a
+// view worse).
+struct OnOffCounts {
+    double without = 0.0, with = 0.0;
+    int better = 0;
+    std::string add(const Snapshot& offLast, const Snapshot& onLast, size_t view) {
+        const double a = offLast.counter("inconsistent faces", -1.0);
+        const double b = onLast.counter("inconsistent faces", -1.0);
+        if (a < 0.0 || b < 0.0)
+            return "view " + std::to_string(view) + ": no inconsistent faces counter";
+        if (b > a)
+            return "view " + std::to_string(view) + ": " +
+                   std::to_string(static_cast<long long>(a)) + " -> " +
+                   std::to_string(static_cast<long long>(b));
+        better += b < a;
+        without += a;
+        with += b;
+        return {};
+    }
+};
+
 inline int contourLoops(const Snapshot& s, int* open = nullptr) {
     int loops = 0, opened = 0;
     for (const Polyline& line : *s.curves)

@@ -185,39 +185,29 @@ void classifyInconsistent(const Snapshot& s, long long (&counts)[kClassCount]) {
 // An option switched on, against the same view with it off: every
 // post-condition of the on run holds (Debug enforces them in the phases),
 // every normal offset stays within its bound, and the view ends with no more
-// inconsistent faces. Adds the final counts to `without` and `with`, and
-// counts the views that end better. The caller checks
-// QTest::currentTestFailed().
+// inconsistent faces (OnOffCounts, which also adds up the final counts). The
+// caller checks QTest::currentTestFailed().
 void compareOnOff(const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun,
-                  size_t view, double& without, double& with, int& better) {
+                  size_t view, OnOffCounts& counts) {
     for (const Snapshot& s : onRun)
         for (const InvariantCheck& c : s.invariants)
             QVERIFY2(c.violations == 0,
                      qPrintable(QString::fromStdString("view " + std::to_string(view) + ", " +
                                                        s.phaseName + ": " + c.name)));
     QVERIFY(largestOffsetRatio(after(onRun, "normal-wiggle")) <= 1.0 + 1e-9);
-    const double a = offRun.back().counter("inconsistent faces", -1.0);
-    const double b = onRun.back().counter("inconsistent faces", -1.0);
-    QVERIFY(a >= 0.0 && b >= 0.0);
-    QVERIFY2(b <= a, qPrintable(QString("view %1: %2 -> %3").arg(view).arg(a).arg(b)));
-    better += b < a;
-    without += a;
-    with += b;
+    const std::string worse = counts.add(offRun.back(), onRun.back(), view);
+    QVERIFY2(worse.empty(), worse.c_str());
 }
 
 // Each view run twice from the defaults (Catmull-Clark), with
 // configure(p, false) and configure(p, true), the pair checked by
 // compareOnOff, then by the slot's own perView(offRun, onRun). False once a
 // check failed.
-struct OnOffTotals {
-    double without = 0.0, with = 0.0;
-    int better = 0;
-};
 bool runOnOff(
     const std::shared_ptr<const PolygonMesh>& cage, const std::vector<Camera>& views,
     const std::function<void(ParameterSet&, bool)>& configure,
     const std::function<void(const std::vector<Snapshot>&, const std::vector<Snapshot>&)>& perView,
-    OnOffTotals& totals) {
+    OnOffCounts& totals) {
     const Method& m = *findMethod("consistent");
     for (size_t v = 0; v < views.size(); ++v) {
         std::vector<Snapshot> runs[2];
@@ -227,7 +217,7 @@ bool runOnOff(
             configure(p, on);
             runs[on] = runAll(cage, views[v], p);
         }
-        compareOnOff(runs[0], runs[1], v, totals.without, totals.with, totals.better);
+        compareOnOff(runs[0], runs[1], v, totals);
         if (QTest::currentTestFailed())
             return false;
         perView(runs[0], runs[1]);
@@ -392,7 +382,7 @@ private slots:
         views = {views[13]};
 #endif
         double pairs = 0.0;
-        OnOffTotals t;
+        OnOffCounts t;
         const bool ok = runOnOff(
             cage, views,
             [](ParameterSet& p, bool on) {
@@ -440,7 +430,7 @@ private slots:
         QVERIFY(depth > 0);
         double pushed = 0.0;
         long long endsWithout = 0, endsWith = 0;
-        OnOffTotals t;
+        OnOffCounts t;
         const bool ok = runOnOff(
             cage, views,
             [&](ParameterSet& p, bool on) { p.set("extension-cusp-push-depth", on ? depth : 0); },
@@ -490,7 +480,7 @@ private slots:
         QVERIFY(ParameterSet::defaults(m.parameters).getBool("extension-push-every-end-final"));
         const char* counter = "other radial ends pushed (extension-push-every-end-final)";
         double pushed = 0.0;
-        OnOffTotals t;
+        OnOffCounts t;
         const bool ok = runOnOff(
             cage, views,
             [](ParameterSet& p, bool on) { p.set("extension-push-every-end-final", on); },
@@ -523,7 +513,7 @@ private slots:
         const char* counter =
             "of them, a corner and a neighbour off the face (normal-wiggle-ring-pairs)";
         double moved = 0.0;
-        OnOffTotals t;
+        OnOffCounts t;
         const bool ok = runOnOff(
             cage, views, [](ParameterSet& p, bool on) { p.set("normal-wiggle-ring-pairs", on); },
             [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
@@ -551,7 +541,7 @@ private slots:
 #ifndef __OPTIMIZE__
         views = {views[5], views[18]}; // 1 -> 0 faces each
 #endif
-        OnOffTotals t;
+        OnOffCounts t;
         const bool ok = runOnOff(
             cage, views,
             [](ParameterSet& p, bool on) { p.set("radial-cusp-inside-pixels", on ? 10.0 : 0.0); },

@@ -67,26 +67,6 @@ std::vector<Camera> views(const PolygonMesh& cage) {
     return all;
 }
 
-// Final inconsistent faces without (off) and with (on) a move, summed over
-// the views; no view may end worse with the move.
-struct OffOnTally {
-    long long without = 0, with = 0;
-    int better = 0;
-    // Empty, or why the view fails.
-    QString add(const PhaseRun& off, const PhaseRun& on, size_t view) {
-        const double a = off.snapshots.back().counter("inconsistent faces", -1.0);
-        const double b = on.snapshots.back().counter("inconsistent faces", -1.0);
-        if (a < 0.0 || b < 0.0)
-            return QString("view %1: no inconsistent faces counter").arg(view);
-        if (b > a)
-            return QString("view %1: %2 -> %3").arg(view).arg(a).arg(b);
-        better += b < a;
-        without += static_cast<long long>(a);
-        with += static_cast<long long>(b);
-        return {};
-    }
-};
-
 } // namespace
 
 class TestPatchSearch : public QObject {
@@ -264,7 +244,7 @@ private slots:
             return n;
         };
         long long slid = 0;
-        OffOnTally tally;
+        OnOffCounts tally;
         for (size_t v = 0; v < cameras.size(); ++v) {
             const PhaseRun off = runView(cage, cameras[v], true, false, true, false);
             const PhaseRun on = runView(cage, cameras[v], true, false, true, true);
@@ -274,11 +254,11 @@ private slots:
             QCOMPARE(contourEdges(s), contourEdges(on.after("vertex-removal")));
             QCOMPARE(off.after("patch-search").counter("C vertices slid along the contour"), 0.0);
             slid += static_cast<long long>(s.counter("C vertices slid along the contour"));
-            const QString worse = tally.add(off, on, v);
-            QVERIFY2(worse.isEmpty(), qPrintable(worse));
+            const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
+            QVERIFY2(worse.empty(), worse.c_str());
         }
-        qInfo("%s, %d views: %lld C vertices slid; final inconsistent faces %lld without the "
-              "slide, %lld with it (%d views better)",
+        qInfo("%s, %d views: %lld C vertices slid; final inconsistent faces %.0f without the "
+              "slide, %.0f with it (%d views better)",
               qPrintable(shapeName), static_cast<int>(cameras.size()), slid, tally.without,
               tally.with, tally.better);
         QVERIFY(slid > 0);
@@ -307,7 +287,7 @@ private slots:
             return std::count_if(radial.begin(), radial.end(), [](int r) { return r != 0; });
         };
         long long added = 0;
-        OffOnTally tally;
+        OnOffCounts tally;
         for (size_t v = 0; v < cameras.size(); ++v) {
             const PhaseRun off = runView(cage, cameras[v], true, false, true, true, false);
             const PhaseRun on = runView(cage, cameras[v], true, false, true, true, true);
@@ -320,11 +300,11 @@ private slots:
             QCOMPARE(static_cast<double>(radialEdges(s)),
                      static_cast<double>(radialEdges(on.after("vertex-removal"))) + n);
             added += static_cast<long long>(n);
-            const QString worse = tally.add(off, on, v);
-            QVERIFY2(worse.isEmpty(), qPrintable(worse));
+            const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
+            QVERIFY2(worse.empty(), worse.c_str());
         }
-        qInfo("spot, %d views: %lld new radial edges; final inconsistent faces %lld without "
-              "them, %lld with them (%d views better)",
+        qInfo("spot, %d views: %lld new radial edges; final inconsistent faces %.0f without "
+              "them, %.0f with them (%d views better)",
               static_cast<int>(cameras.size()), added, tally.without, tally.with, tally.better);
         QVERIFY(added > 0);
         QVERIFY(tally.better > 0);
