@@ -11,12 +11,11 @@
 // new vertices.
 #include "contours/consistent/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/IllinoisBracket.h"
+#include "contours/consistent/ContourCuspSearch.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
 
 #include <algorithm>
-#include <cmath>
 #include <deque>
 #include <optional>
 
@@ -25,8 +24,7 @@ namespace contour::consistent {
 namespace {
 
 struct RefinementStats {
-    long long measured = 0, farther = 0, split = 0, rejected = 0, noChart = 0, noRoot = 0,
-              depthLimited = 0;
+    long long measured = 0, farther = 0, split = 0, rejected = 0, missed = 0, depthLimited = 0;
     double largestBefore = 0.0, largestAfter = 0.0;
 };
 
@@ -55,51 +53,22 @@ std::optional<std::array<Index, 2>> contourEdgeCorners(const ConsistentMesh& m, 
     return std::array<Index, 2>{c, d};
 }
 
-// The root of g on the domain segment from the chord's middle u_m (appendix B
-// interpolation of u_a and u_b at 1/2) towards the opposite corner whose label
-// differs in sign from g(u_m): the contour point the chord passes by. Regula
-// falsi with the Illinois rule (IllinoisBracket.h) down to `tol`.
+// The contour point beside the chord's middle S(1/2) (appendix B
+// interpolation of u_a and u_b): the root of g on the line from the opposite
+// corner whose g has the other sign than g(S(1/2)) — contourPointOnFan of the
+// cusp search (ContourCuspSearch.h), which does exactly that root search.
 std::optional<MeshVertex> contourPointBeside(const ConsistentMesh& m, Index a, Index b, Index c,
-                                             Index d, double tol, int maxIterations,
+                                             Index d, const ContourCuspOptions& options,
                                              RefinementStats& st) {
-    const std::optional<Preimage> mid =
-        m.interpolate(m.vertex(a).preimage, m.vertex(b).preimage, 0.5);
-    if (!mid) {
-        ++st.noChart;
+    ContourCuspStats stats;
+    std::optional<ContourPoint> point = contourPointOnFan(m, c, a, b, 0.5, options, stats);
+    if (!point)
+        point = contourPointOnFan(m, d, b, a, 0.5, options, stats);
+    if (!point || !point->converged) {
+        ++st.missed; // no common chart, no sign change towards either corner, or unconverged
         return std::nullopt;
     }
-    const MeshVertex xm = m.evaluateWithoutCurvature(*mid);
-    if (xm.g == 0.0)
-        return m.evaluate(*mid);
-    // The far end has the other sign: label Front means g > 0 there.
-    const Index far = (xm.g > 0.0) == (m.vertex(c).label == VertexLabel::Front) ? d : c;
-    const MeshVertex& xf = m.vertex(far);
-    if ((xf.g > 0.0) == (xm.g > 0.0)) {
-        ++st.noRoot; // g at the corner disagrees with its label (cannot bracket)
-        return std::nullopt;
-    }
-    const ConsistentMesh::Segment seg = m.segment(*mid, xf.preimage);
-    IllinoisBracket br{0.0, 1.0, xm.g, xf.g, 0};
-    std::optional<MeshVertex> best;
-    for (int it = 0; it < maxIterations; ++it) {
-        const double t = br.falsePosition();
-        const std::optional<Preimage> p = seg.at(t);
-        if (!p) {
-            ++st.noChart;
-            return std::nullopt;
-        }
-        const MeshVertex x = m.evaluateWithoutCurvature(*p);
-        if (!best || std::abs(x.g) < std::abs(best->g))
-            best = x;
-        if (std::abs(x.g) <= tol)
-            break;
-        br.keep(t, x.g, (x.g > 0.0) == (br.flo > 0.0));
-    }
-    if (!best || std::abs(best->g) > tol) {
-        ++st.noRoot;
-        return std::nullopt;
-    }
-    return m.evaluate(best->preimage);
+    return m.evaluate(point->preimage);
 }
 
 void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
@@ -110,7 +79,9 @@ void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
     // As contour insertion (§6.2 e): half the checked |g| bound, which is
     // relative to the diagonal after the phase.
     const double tol = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
-    const int maxIterations = ctx.parameters.getInt("root-max-iterations");
+    ContourCuspOptions options;
+    options.gTolerance = tol;
+    options.maxRootIterations = ctx.parameters.getInt("root-max-iterations");
     RefinementStats st;
     const Camera& camera = m.camera();
     struct Item {
@@ -130,8 +101,7 @@ void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
         if (!corners)
             continue;
         const auto [c, d] = *corners;
-        std::optional<MeshVertex> root =
-            contourPointBeside(m, item.a, item.b, c, d, tol, maxIterations, st);
+        std::optional<MeshVertex> root = contourPointBeside(m, item.a, item.b, c, d, options, st);
         if (!root)
             continue;
         ++st.measured;
@@ -182,8 +152,8 @@ void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("contour edges split", static_cast<double>(st.split));
     s.setCounter("splits rejected (consistency, fold or VBO)", static_cast<double>(st.rejected));
     s.setCounter("edges left at contour-refinement-depth", static_cast<double>(st.depthLimited));
-    s.setCounter("edges without a chart", static_cast<double>(st.noChart));
-    s.setCounter("edges without a root", static_cast<double>(st.noRoot));
+    s.setCounter("edges without a contour point (no chart, no sign change or unconverged)",
+                 static_cast<double>(st.missed));
     s.setCounter("largest chord-to-contour distance before (px)", st.largestBefore);
     s.setCounter("largest chord-to-contour distance after (px)", st.largestAfter);
     if (pixels > 0.0 && st.largestAfter > pixels)

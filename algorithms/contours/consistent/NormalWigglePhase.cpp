@@ -249,9 +249,9 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
     const int pairSamples = ctx.parameters.getInt("normal-wiggle-pair-offsets");
     const bool ringPairs = ctx.parameters.getBool("normal-wiggle-ring-pairs");
     // 0: no bound.
-    const double ringShift = ctx.parameters.getDouble("normal-wiggle-ring-pair-shift") > 0.0
-                                 ? ctx.parameters.getDouble("normal-wiggle-ring-pair-shift")
-                                 : std::numeric_limits<double>::infinity();
+    double ringShift = ctx.parameters.getDouble("normal-wiggle-ring-pair-shift");
+    if (ringShift <= 0.0)
+        ringShift = std::numeric_limits<double>::infinity();
     for (int sweep = 0; pairSamples > 0 && sweep < maxSweeps; ++sweep) {
         bool progress = false;
         for (Index f : inconsistentFaces(m)) {
