@@ -25,7 +25,7 @@ Method makeConsistentContourMethod() {
         "F-VBO and B-VBO faces) chained. Known gap: inconsistent faces remain (about 0.001-0.013 % "
         "of the faces per view on average on ConTesse's meshes; at most 0.05 % on every view "
         "of bob_controlmesh, bigguy, spot_quadrangulated, bob_quad, fertility and "
-        "killeroo_small, not yet on spot_control_mesh (3 of 26 views); 0 on a sphere, "
+        "killeroo_small, not yet on spot_control_mesh (2 of 26 views); 0 on a sphere, "
         "ellipsoid and torus, a few near cusps on a bumpy torus); every phase counts them and "
         "the Overlays toolbar outlines them. Against a dense ground truth, contour loops match "
         "in 36 of 36 views on every test shape and cusp counts in 34-36.";

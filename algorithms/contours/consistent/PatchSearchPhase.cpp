@@ -98,12 +98,15 @@ struct PatchSettings {
     double radialTolerance = 0.0; // |h_p(r)| of a radial end (a distance)
     bool contourSlide = false;    // relocate C vertices along the contour g = 0
     bool newRadialEnds = false;   // x on the radial plane of a C vertex lacking a radial edge
+    bool newRadialCusps = false;  // ... also of a cusp, whose valence then changes
+    bool cuspTies = false;        // a cusp's first radial edge also without a gain
     double rootTolerance = 0.0;   // |g| of a slid C vertex (a distance)
 };
 
 struct PatchStats {
     long long patches = 0, samples = 0, cancelledSamples = 0, rejected = 0, inserted = 0,
-              relocated = 0, skipped = 0, unplanned = 0, slid = 0, newRadial = 0;
+              relocated = 0, skipped = 0, unplanned = 0, slid = 0, newRadial = 0,
+              newRadialCusps = 0;
 };
 
 using Cost = TriangulationCost;
@@ -134,6 +137,10 @@ struct Patch {
     // vertex with fewer than two radial edges, and the edge partner-x
     // becomes radial (x the far end of a new radial edge).
     bool newRadial = false;
+    // patch-new-radial-cusps: the one cusp without radial edges on the ring
+    // (kInvalidIndex: none). Such a patch is searched only as a new radial
+    // end of that cusp: the new radial edge lets its valence change.
+    Index lockedCusp = kInvalidIndex;
 };
 
 class PatchSearcher {
@@ -222,14 +229,21 @@ private:
             }
             for (Index c : centres)
                 if (std::optional<Patch> p = insertionPatch(c)) {
-                    if (set_.newRadialEnds)
-                        addNewRadialPatches(*p, patches);
+                    std::optional<Patch> q;
+                    if (set_.grow && c == f)
+                        q = grown(*p);
+                    if (set_.newRadialEnds) {
+                        addNewRadialPatches(*p, patches, false);
+                        // A cusp's fan may need a corner one layer out.
+                        if (q)
+                            addNewRadialPatches(*q, patches, true);
+                    }
                     if (lateOnly)
                         continue;
-                    if (set_.grow && c == f)
-                        if (std::optional<Patch> q = grown(*p))
-                            patches.push_back(std::move(*q));
-                    patches.push_back(std::move(*p));
+                    if (q && q->lockedCusp == kInvalidIndex)
+                        patches.push_back(std::move(*q));
+                    if (p->lockedCusp == kInvalidIndex)
+                        patches.push_back(std::move(*p));
                 }
         }
         if (set_.relocate)
@@ -240,14 +254,20 @@ private:
                 std::optional<Patch> p = relocationPatch(v);
                 if (!p)
                     continue;
-                if (set_.newRadialEnds && p->partner == kInvalidIndex && !p->onContour)
-                    addNewRadialPatches(*p, patches);
+                std::optional<Patch> q;
+                if (set_.grow)
+                    q = grown(*p);
+                if (set_.newRadialEnds && p->partner == kInvalidIndex && !p->onContour) {
+                    addNewRadialPatches(*p, patches, false);
+                    if (q)
+                        addNewRadialPatches(*q, patches, true);
+                }
                 if (lateOnly && !p->onContour)
                     continue;
-                if (set_.grow)
-                    if (std::optional<Patch> q = grown(*p))
-                        patches.push_back(std::move(*q));
-                patches.push_back(std::move(*p));
+                if (q && q->lockedCusp == kInvalidIndex)
+                    patches.push_back(std::move(*q));
+                if (p->lockedCusp == kInvalidIndex)
+                    patches.push_back(std::move(*p));
             }
         Best best;
         for (const Patch& p : patches)
@@ -341,13 +361,23 @@ private:
         return simpleCycle(half);
     }
 
-    bool cornersAllowed(const std::vector<Index>& ring) const {
-        if (static_cast<int>(ring.size()) > set_.maxCorners)
+    // Sets p.lockedCusp; false when the ring is too long or has a cusp
+    // that must keep its valence.
+    bool cornersAllowed(Patch& p) const {
+        if (static_cast<int>(p.ring.size()) > set_.maxCorners)
             return false;
         // A corner's valence changes: a cusp keeps the valence 4 of Fig.
-        // 18d until it has radial edges (as in edge splitting).
-        return std::none_of(ring.begin(), ring.end(),
-                            [&](Index w) { return lockedCusp(m_, w, set_.cuspEdits); });
+        // 18d until it has radial edges (as in edge splitting), unless the
+        // move gives it one (patch-new-radial-cusps).
+        p.lockedCusp = kInvalidIndex;
+        for (Index w : p.ring) {
+            if (!lockedCusp(m_, w, set_.cuspEdits))
+                continue;
+            if (!set_.newRadialEnds || !set_.newRadialCusps || p.lockedCusp != kInvalidIndex)
+                return false;
+            p.lockedCusp = w;
+        }
+        return true;
     }
 
     std::optional<Patch> insertionPatch(Index c) const {
@@ -364,7 +394,7 @@ private:
                 p.faces.push_back(g);
         }
         p.ring = boundary(p.faces);
-        if (p.ring.empty() || !cornersAllowed(p.ring))
+        if (p.ring.empty() || !cornersAllowed(p))
             return std::nullopt;
         // A corner of valence 3 with its three faces in the patch is inside
         // it: the fan of x over the ring would have to remove it.
@@ -393,7 +423,7 @@ private:
         if (q.faces.size() == p.faces.size())
             return std::nullopt;
         q.ring = boundary(q.faces);
-        if (q.ring.empty() || !cornersAllowed(q.ring))
+        if (q.ring.empty() || !cornersAllowed(q))
             return std::nullopt;
         for (Index f : q.faces) {
             const Triangle t = m_.face(f);
@@ -422,7 +452,7 @@ private:
         p.centre = v;
         p.faces = m_.vertexFaces(v);
         p.ring = boundary(p.faces);
-        if (p.ring.size() != p.faces.size() || !cornersAllowed(p.ring))
+        if (p.ring.size() != p.faces.size() || !cornersAllowed(p))
             return std::nullopt;
         for (Index w : p.ring) {
             // One radial edge p-v at most: v then slides along p's radial
@@ -441,10 +471,13 @@ private:
     // patch-new-radial-ends: the variants of patch p whose free vertex x is
     // sampled on the radial plane of a ring corner w that lacks a radial
     // edge (roots of h_w, as for a relocated radial end), with x joined to
-    // w and the edge w-x tagged radial once the move is applied.
-    void addNewRadialPatches(const Patch& p, std::vector<Patch>& out) const {
+    // w and the edge w-x tagged radial once the move is applied. A ring
+    // with a cusp without radial edges gives only that cusp's variant;
+    // cuspsOnly: only cusps' variants (grown patches).
+    void addNewRadialPatches(const Patch& p, std::vector<Patch>& out, bool cuspsOnly) const {
         for (Index w : p.ring)
-            if (missingRadialEdge(w)) {
+            if (missingRadialEdge(w) && (p.lockedCusp == kInvalidIndex || p.lockedCusp == w) &&
+                (!cuspsOnly || m_.vertex(w).cusp)) {
                 Patch r = p;
                 r.partner = w;
                 r.newRadial = true;
@@ -452,13 +485,16 @@ private:
             }
     }
 
-    // A C vertex (not a cusp: its radial edges are cusp detection's and
-    // radial insertion's, Fig. 18e) with fewer than two radial edges:
-    // §6.3 g gives every C vertex two, but an insertion that would fold is
-    // skipped (Fig. 17), and the faces on that side stay inconsistent.
+    // A C vertex with fewer than two radial edges: §6.3 g gives every C
+    // vertex two, but an insertion that would fold is skipped (Fig. 17),
+    // and the faces on that side stay inconsistent. A cusp (two radial
+    // edges on its outside region, Fig. 18e) only with
+    // patch-new-radial-cusps: radial insertion skips a cusp whose outside
+    // region it cannot identify, and its valence-4 fan (Fig. 18d) can then
+    // have too few corners on one side to wrap around the cusp's image.
     bool missingRadialEdge(Index w) const {
         const MeshVertex& x = m_.vertex(w);
-        if (x.label != VertexLabel::Contour || x.cusp)
+        if (x.label != VertexLabel::Contour || (x.cusp && !set_.newRadialCusps))
             return false;
         int radial = 0;
         for (Index u : m_.neighbours(w))
@@ -480,7 +516,7 @@ private:
         p.onContour = true;
         p.faces = m_.vertexFaces(v);
         p.ring = boundary(p.faces);
-        if (p.ring.size() != p.faces.size() || !cornersAllowed(p.ring))
+        if (p.ring.size() != p.faces.size() || !cornersAllowed(p))
             return std::nullopt;
         int contour = 0;
         for (Index w : p.ring) {
@@ -828,7 +864,10 @@ private:
             }
             // Labels only first: a lower bound that most samples fail.
             const Cost bound = bestFan(p, e, xi, cheap, false, nullptr);
-            if (!bound.valid() || now - bound.inconsistent < std::max(best.gain, 1))
+            // patch-new-radial-cusp-ties: a cusp's first radial edge is worth
+            // a move that removes nothing (a tie-break, see the parameter).
+            const int minGain = set_.cuspTies && p.lockedCusp != kInvalidIndex ? 0 : 1;
+            if (!bound.valid() || now - bound.inconsistent < std::max(best.gain, minGain))
                 continue;
             if (!full)
                 full = pockets(p, plain, true);
@@ -837,7 +876,7 @@ private:
             if (!c.valid())
                 continue;
             const int gain = now - c.inconsistent;
-            if (gain < 1 || gain < best.gain ||
+            if (gain < minGain || gain < best.gain ||
                 (gain == best.gain && !(c.minQuality > best.minQuality)))
                 continue;
             // The whole edit: degenerate CC edges across the patch's
@@ -952,6 +991,7 @@ private:
             if (p.newRadial) {
                 m_.setEdgeTag(p.partner, xi, kRadialEdge);
                 ++stats.newRadial;
+                stats.newRadialCusps += m_.vertex(p.partner).cusp;
             }
             stats.slid += p.onContour;
         } else {
@@ -962,6 +1002,7 @@ private:
             if (p.newRadial) {
                 m_.setEdgeTag(p.partner, xi, kRadialEdge);
                 ++stats.newRadial;
+                stats.newRadialCusps += m_.vertex(p.partner).cusp;
             }
         }
         ++moves_;
@@ -983,6 +1024,8 @@ void runPatchSearch(const PhaseContext& ctx, Snapshot& s) {
     set.radialTolerance = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
     set.contourSlide = ctx.parameters.getBool("patch-contour-slide");
     set.newRadialEnds = ctx.parameters.getBool("patch-new-radial-ends");
+    set.newRadialCusps = ctx.parameters.getBool("patch-new-radial-cusps");
+    set.cuspTies = ctx.parameters.getBool("patch-new-radial-cusp-ties");
     // Half the bound the |g| post-condition checks, as contour insertion.
     set.rootTolerance = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
     const bool enabled = ctx.parameters.getBool("patch-search");
@@ -1028,6 +1071,7 @@ void runPatchSearch(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter("vertices relocated", static_cast<double>(st.relocated));
     s.setCounter("C vertices slid along the contour", static_cast<double>(st.slid));
     s.setCounter("new radial edges", static_cast<double>(st.newRadial));
+    s.setCounter("new radial edges at cusps", static_cast<double>(st.newRadialCusps));
     s.setCounter("faces skipped (nothing changed near them)", static_cast<double>(st.skipped));
     s.setCounter("moves skipped (the mesh would refuse an edit)",
                  static_cast<double>(st.unplanned));
@@ -1142,6 +1186,38 @@ void addPatchSearchPhase(Method& m) {
          "on: spot_control 25 -> 24, bigguy 156 -> 149 (views above 0.05 %: 3 -> 2), "
          "spot_quadrangulated 31 -> 30, killeroo 501 -> 492, bob_control, bob_quad, "
          "fertility and the four shapes unchanged; no view worse, no measurable time.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
+    m.parameters.push_back(
+        {"patch-new-radial-cusps",
+         "Patch search: new radial ends at cusps",
+         "With patch-new-radial-ends, a cusp with fewer than two radial edges may get one too "
+         "(not in the paper): x on the cusp's radial plane, joined to it, the patch (also the "
+         "grown one) re-triangulated around it, so the cusp's valence changes (Fig. 18d keeps "
+         "it 4 only until the cusp has radial edges, Fig. 18e). Over 26 views, final "
+         "inconsistent faces off -> on: bigguy 49 -> 47 (views 4: 2 -> 1, 11: 3 -> 2); "
+         "spot_control, bob_control, spot_quadrangulated, bob_quad, fertility, killeroo_small "
+         "and the four shapes unchanged; no view worse.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
+    m.parameters.push_back(
+        {"patch-new-radial-cusp-ties",
+         "Patch search: a cusp's first radial edge on a tie",
+         "With patch-new-radial-cusps, a new radial end at a cusp that has no radial edge yet "
+         "is accepted when the patch keeps as many inconsistent faces as before, not only "
+         "fewer (not in the paper; a tie-break: the move adds the radial edge Fig. 18e gives "
+         "every cusp, once per such cusp, and frees the cusp's valence for the later moves). "
+         "Spot view 16: two cusps whose valence-4 fan (Fig. 18d) has one F corner, so its two "
+         "F faces cannot cover the 372 degrees the F side needs around the cusp's image, get "
+         "one radial edge each and the later moves clear the view (2 -> 0). Over 26 views, "
+         "final inconsistent faces off -> on: spot_control 10 -> 8, bigguy 47 -> 48 (view "
+         "8: 2 -> 3), the other meshes and the four shapes unchanged.",
          ParameterType::Bool,
          true,
          0,
