@@ -12,6 +12,7 @@
 #include "contours/consistent/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/ContourCuspSearch.h"
+#include "contours/consistent/CuspEndRetriangulation.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
 
@@ -145,7 +146,14 @@ void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
         work.push_back({item.a, v, item.depth + 1});
         work.push_back({v, item.b, item.depth + 1});
     }
+    // The C vertices added give the discs at a cusp's radial end new
+    // outlines: searched again (cusp-end-retriangulation-faces, as after the
+    // normal wiggle).
+    const CuspEndRetriangulationCounts retri = retriangulateAtCuspEnds(
+        ctx, m, ctx.parameters.getInt("cusp-end-retriangulation-faces"), phase);
     publish(s, m);
+    s.setCounter("discs re-triangulated at a cusp's radial end",
+                 static_cast<double>(retri.applied));
     s.setCounter("contour edges measured", static_cast<double>(st.measured));
     s.setCounter("contour edges farther than contour-refinement-pixels",
                  static_cast<double>(st.farther));

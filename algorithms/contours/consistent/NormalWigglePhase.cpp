@@ -2,6 +2,7 @@
 // notes §2.4.5): vertices may leave the limit surface.
 #include "contours/consistent/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/CuspEndRetriangulation.h"
 #include "contours/consistent/LocalEdit.h"
 #include "contours/consistent/OptimizationPhaseSupport.h"
 #include "contours/consistent/RadialExtension.h"
@@ -313,6 +314,11 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
             tally.accepted += again.accepted;
         }
     }
+    // Discs of faces around the inconsistent faces at a cusp's radial end,
+    // re-triangulated (cusp-end-retriangulation-faces), last: vertices do
+    // not move, only edges inside the disc, so no other face changes.
+    const CuspEndRetriangulationCounts retri = retriangulateAtCuspEnds(
+        ctx, m, ctx.parameters.getInt("cusp-end-retriangulation-faces"), phase);
     double largest = 0.0, contourShift = 0.0;
     long long offVertices = 0;
     for (Index v = 0; v < m.vertexCount(); ++v) {
@@ -339,6 +345,10 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
                  static_cast<double>(push.moved - push.everyEndMoved));
     s.setCounter("other radial ends pushed (extension-push-every-end-final)",
                  static_cast<double>(push.everyEndMoved));
+    s.setCounter("faces at a cusp's radial end searched (cusp-end-retriangulation-faces)",
+                 static_cast<double>(retri.faces));
+    s.setCounter("discs re-triangulated at a cusp's radial end",
+                 static_cast<double>(retri.applied));
 }
 
 // Notes §6.1 item 2: |α| <= the mean one-ring distance (times
@@ -441,6 +451,27 @@ void addNormalWigglePhase(Method& m) {
          0.0,
          0.0,
          100.0,
+         {}});
+    m.parameters.push_back(
+        {"cusp-end-retriangulation-faces",
+         "Cusp radial ends: disc re-triangulation",
+         "Not in the paper. After the normal wiggle (and again after contour refinement, whose "
+         "new C vertices give new outlines), each face still inconsistent with a corner "
+         "at the far end c of a cusp's radial edge (Fig. 18e) is searched for a disc of up to "
+         "this many faces around it (grown across untagged, non-CC edges, every vertex on its "
+         "outline) whose best re-triangulation has strictly fewer inconsistent faces (every "
+         "VBO defined, no degenerate CC edge, no new edge at a cusp, no fold); the best disc is "
+         "re-triangulated by flips. Beside a cusp the image of the surface is a thin curved "
+         "strip, and a face r-x-c whose chord r-x passes on the wrong side of c (bumpy torus "
+         "view 4: 1.2 px) has an outline facing the wrong way: no single vertex move fixes it, "
+         "other edges of a few faces around do. 0: off. Over 26 views, final inconsistent "
+         "faces 0 -> 6: bumpy torus 5 -> 2, spot_control 10 -> 9, bob_control 1 -> 0, bigguy "
+         "49 -> 41, spot_quad 11 -> 8, bob_quad 17 -> 14, fertility 19 -> 16, killeroo 163 -> "
+         "131, no view worse; 7 or 8 gain nothing more on spot, bob and the bumpy torus.",
+         ParameterType::Int,
+         6,
+         0,
+         8,
          {}});
     m.parameters.push_back({"normal-wiggle-max-sweeps",
                             "Normal wiggle: sweeps",
