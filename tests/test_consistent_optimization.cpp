@@ -64,8 +64,8 @@ std::vector<Snapshot> runAll(const std::shared_ptr<const PolygonMesh>& cage, con
 // normal-wiggle-pair-offsets, cusp-end-retriangulation-faces) and the
 // radialization's
 // (radial-keep-consistency, radial-fan-sequences, radial-cusp-opposite-edge,
-// radial-cusp-both-sides, radial-cusp-inside-pixels) and cusp detection's
-// contour samples, so those
+// radial-cusp-both-sides, radial-cusp-inside-pixels), cusp detection's
+// contour samples and the cusp retry, so those
 // rows measure §6.2-§6.4 as written.
 std::vector<Snapshot> runViews(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
                                bool fineOffsets, bool flipPairs) {
@@ -79,7 +79,7 @@ std::vector<Snapshot> runViews(const std::shared_ptr<const PolygonMesh>& cage, c
     for (const char* extension :
          {"vertex-removal", "patch-search", "radial-keep-consistency", "radial-fan-sequences",
           "radial-cusp-opposite-edge", "radial-cusp-both-sides", "patch-contour-slide",
-          "patch-new-radial-ends"})
+          "patch-new-radial-ends", "cusp-retry"})
         if (paperOnly)
             p.set(extension, false);
     if (paperOnly) {
@@ -201,7 +201,7 @@ void compareOnOff(const std::vector<Snapshot>& offRun, const std::vector<Snapsho
     QVERIFY2(worse.empty(), worse.c_str());
 }
 
-// Each view run twice from the defaults (Catmull-Clark), with
+// Each view run twice from the defaults (Catmull-Clark, cusp-retry off), with
 // configure(p, false) and configure(p, true), the pair checked by
 // compareOnOff, then by the slot's own perView(offRun, onRun). False once a
 // check failed.
@@ -216,6 +216,9 @@ bool runOnOff(
         for (const bool on : {false, true}) {
             ParameterSet p = ParameterSet::defaults(m.parameters);
             p.set("surface", std::string("catmull-clark"));
+            // The cusp retry (last) reruns the method when faces remain and
+            // would blur the option's own effect; its slot switches it.
+            p.set("cusp-retry", false);
             configure(p, on);
             runs[on] = runAll(cage, views[v], p);
         }
@@ -640,6 +643,60 @@ private slots:
               t.without, t.with, t.better, applied);
         QVERIFY(applied > 0.0);
         QCOMPARE(t.better, 2);
+        QCOMPARE(t.with, 0.0);
+    }
+
+    // cusp-retry (not in the paper): when faces stay inconsistent next to a
+    // cusp, the method runs again with the faces around those cusps refined
+    // before contour insertion (cusp-refinement-rings, -levels) and keeps
+    // the run with strictly fewer inconsistent faces. Against the same run
+    // without it: no view worse, some better, a retry adopted, nothing
+    // retried with it off, every post-condition holds (Debug enforces them,
+    // in the retry's own runs too). At session 10's defaults (26 views, with
+    // cusp-retry-variants): spot 7 -> 0 faces (views 9 and 10 from 2 and 3),
+    // bumpy torus 2 -> 0 (view 21), the targets of 0.05 % and 0 that no move
+    // before it reached.
+    void cuspRetry_data() {
+        QTest::addColumn<QString>("shapeName");
+        QTest::addColumn<QList<int>>("debugViews");
+        QTest::addRow("spot") << QString("spot") << QList<int>{9, 10};
+        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << QList<int>{21};
+    }
+    void cuspRetry() {
+        QFETCH(QString, shapeName);
+        QFETCH(QList<int>, debugViews);
+        const auto cage = loadShape(shapeName.toStdString());
+        std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+#ifndef __OPTIMIZE__
+        std::vector<Camera> some;
+        for (int v : debugViews)
+            some.push_back(views[static_cast<size_t>(v)]);
+        views = some;
+#else
+        Q_UNUSED(debugViews);
+#endif
+        const Method& m = *findMethod("consistent");
+        QVERIFY(ParameterSet::defaults(m.parameters).getBool("cusp-retry"));
+        double adopted = 0.0;
+        OnOffCounts t;
+        const bool ok = runOnOff(
+            cage, views, [](ParameterSet& p, bool on) { p.set("cusp-retry", on); },
+            [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
+                QCOMPARE(after(offRun, "cusp-retry").counter("cusp retry: runs", 0.0), 0.0);
+                QVERIFY(largestOffsetRatio(after(onRun, "cusp-retry")) <= 1.0 + 1e-9);
+                adopted +=
+                    after(onRun, "cusp-retry").counter("cusp retry: run adopted (0: none)", 0.0) >
+                    0.0;
+            },
+            t);
+        if (!ok)
+            return;
+        qInfo("%s, %d views: final inconsistent faces %.0f without the cusp retry, %.0f with it "
+              "(%d views better, %.0f retries adopted)",
+              qPrintable(shapeName), static_cast<int>(views.size()), t.without, t.with, t.better,
+              adopted);
+        QVERIFY(adopted > 0.0);
+        QVERIFY(t.better > 0);
         QCOMPARE(t.with, 0.0);
     }
 

@@ -40,6 +40,9 @@ PhaseRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& c
     p.set("patch-new-radial-cusp-ties", cuspTies);
     if (cuspEndDiscs >= 0)
         p.set("cusp-end-retriangulation-faces", cuspEndDiscs);
+    // The cusp retry (last) reruns the method when faces remain: off, so the
+    // final counts show the patch search's own effect.
+    p.set("cusp-retry", false);
     Runner runner(m, makeInputSnapshot(cage), camera, p);
     // A phase that fails (a PhaseError) fails the slot, with its message.
     runner.runToEnd();

@@ -83,6 +83,7 @@ Method makeConsistentContourMethod() {
     };
     addInitializationPhase(m);
     addCuspDetectionPhase(m);
+    addCuspRefinementPhase(m);
     addContourInsertionPhase(m);
     addRadialEdgeInsertionPhase(m);
     addRadialFlipPhase(m);
@@ -94,6 +95,7 @@ Method makeConsistentContourMethod() {
     addPatchSearchPhase(m);
     addNormalWigglePhase(m);
     addContourRefinementPhase(m);
+    addCuspRetryPhase(m); // reruns the phases above: keep it after them
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);
     addSimplificationPhase(m);

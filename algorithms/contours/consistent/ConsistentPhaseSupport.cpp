@@ -600,4 +600,28 @@ InvariantCheck labelsFollowG(const ConsistentMesh& m) {
     return labels;
 }
 
+int cuspEdgesOf(const ConsistentMesh& m, const Triangle& t) {
+    int n = 0;
+    for (int i = 0; i < 3; ++i)
+        n += (m.edgeTag(t[i], t[(i + 1) % 3]) & kCuspEdge) != 0;
+    return n;
+}
+
+std::vector<InvariantCheck> cuspEdgeChecks(const ConsistentMesh& m) {
+    InvariantCheck edges = check("every cusp edge is an interior FB edge (§6.2 d, Fig. 18b)");
+    for (const auto& [k, tag] : m.edgeTags()) {
+        if (!(tag & kCuspEdge))
+            continue;
+        const auto [x, y] = ConsistentMesh::edgeFromKey(k);
+        if (static_cast<int>(m.vertex(x).label) * static_cast<int>(m.vertex(y).label) >= 0 ||
+            m.faceOfHalfedge(x, y) == kInvalidIndex || m.faceOfHalfedge(y, x) == kInvalidIndex)
+            violate(edges, "edge " + std::to_string(x) + "-" + std::to_string(y));
+    }
+    InvariantCheck apart = check("no face has two cusp edges (each cusp vertex gets valence 4)");
+    for (Index f = 0; f < m.faceCount(); ++f)
+        if (cuspEdgesOf(m, m.face(f)) > 1)
+            violate(apart, describeFace(m, f));
+    return {edges, apart};
+}
+
 } // namespace contour::consistent

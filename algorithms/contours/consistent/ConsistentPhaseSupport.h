@@ -87,5 +87,11 @@ std::vector<InvariantCheck> phaseChecks(const PhaseContext& ctx, const Snapshot&
                                         const ConsistentMesh& m, bool afterContourInsertion);
 // Before contour insertion: every vertex's label is sign(g) at its preimage.
 InvariantCheck labelsFollowG(const ConsistentMesh& m);
+// How many of the triangle's edges are cusp edges (§6.2 d).
+int cuspEdgesOf(const ConsistentMesh& m, const Triangle& t);
+// Between cusp detection and contour insertion (§6.2 d, Fig. 18b-d): every
+// cusp edge is an interior FB edge, and no face has two cusp edges (each
+// cusp vertex gets valence 4).
+std::vector<InvariantCheck> cuspEdgeChecks(const ConsistentMesh& m);
 
 } // namespace contour::consistent

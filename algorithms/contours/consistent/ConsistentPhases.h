@@ -9,6 +9,7 @@ namespace contour::consistent {
 
 void addInitializationPhase(Method& m);      // §6.1, Fig. 15a-c
 void addCuspDetectionPhase(Method& m);       // §6.2 d, Fig. 15d, 16b, 18b
+void addCuspRefinementPhase(Method& m);      // not in the paper: edges near cusps halved
 void addContourInsertionPhase(Method& m);    // §6.2 e-f, Fig. 15d-f
 void addRadialEdgeInsertionPhase(Method& m); // §6.3 g, Fig. 15g, 16d, 17, 18e
 void addRadialFlipPhase(Method& m);          // §6.3 h, Fig. 15h, 16e
@@ -20,6 +21,7 @@ void addVertexRemovalPhase(Method& m);       // extension of §6.4 (§6.3 h vert
 void addPatchSearchPhase(Method& m);         // extension of §6.4: compound moves
 void addNormalWigglePhase(Method& m);        // §6.4 vertex wiggling along the normal
 void addContourRefinementPhase(Method& m);   // not in the paper: contour edges split near the curve
+void addCuspRetryPhase(Method& m);           // not in the paper: rerun refined around cusps
 void addChainingPhase(Method& m);            // §8: the contour generator as polylines
 
 } // namespace contour::consistent

@@ -2,6 +2,7 @@
 #include "contours/consistent/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/ContourCuspSearch.h"
+#include "contours/consistent/FoldTest.h"
 #include "contours/consistent/JointRootSearch.h"
 #include "contours/consistent/Shiftability.h"
 
@@ -66,43 +67,11 @@ bool hasCuspEdge(const ConsistentMesh& m, Index v) {
     return false;
 }
 
-// Appendix B along a whole new edge, not only at its midpoint: near a domain
-// corner the segment between two preimages can cross a third domain face,
-// where interpolation (and the later root search on the edge) fails.
-bool edgeInterpolates(const ConsistentMesh& m, const Preimage& a, const Preimage& b) {
-    for (int k = 1; k < 10; ++k)
-        if (!m.interpolate(a, b, 0.1 * k))
-            return false;
-    return true;
-}
-
 // Moving w to p keeps every edge at w interpolable.
 bool shiftKeepsEdges(const ConsistentMesh& m, Index w, const Preimage& p) {
     for (Index x : m.neighbours(w))
         if (!edgeInterpolates(m, p, m.vertex(x).preimage))
             return false;
-    return true;
-}
-
-// Splitting a-b at preimage p keeps every new face unfolded in parameter
-// space with a common chart (appendix B; the mesh's post-conditions).
-bool splitKeepsCharts(const ConsistentMesh& m, Index a, Index b, const Preimage& p) {
-    const auto [c, d] = m.oppositeVertices(a, b);
-    const Preimage &pa = m.vertex(a).preimage, &pb = m.vertex(b).preimage;
-    for (Index x : {a, b, c, d})
-        if (x != kInvalidIndex && !edgeInterpolates(m, p, m.vertex(x).preimage))
-            return false;
-    for (const auto& [x, y, z] : {std::array{a, b, c}, std::array{b, a, d}}) {
-        if (z == kInvalidIndex)
-            continue;
-        const Preimage &px = x == a ? pa : pb, &py = y == a ? pa : pb;
-        const Preimage& pz = m.vertex(z).preimage;
-        for (const auto& tri : {std::array{px, p, pz}, std::array{p, py, pz}}) {
-            const std::optional<int> o = m.parameterOrientation(tri);
-            if (!o || *o <= 0)
-                return false;
-        }
-    }
     return true;
 }
 
@@ -394,13 +363,6 @@ void placeCusp(ConsistentMesh& m, const Candidate& c, double shiftFraction,
     ++n.splits;
 }
 
-int cuspEdgesOf(const ConsistentMesh& m, const Triangle& t) {
-    int n = 0;
-    for (int i = 0; i < 3; ++i)
-        n += (m.edgeTag(t[i], t[(i + 1) % 3]) & kCuspEdge) != 0;
-    return n;
-}
-
 // Two cusps so close that their cusp edges share a face (the second cusp
 // was found in a face the first one split): inserting both would give the
 // first cusp vertex a fifth neighbour, the second one (§6.2 f wants valence
@@ -545,21 +507,8 @@ std::vector<InvariantCheck> checkCuspDetection(const PhaseContext& ctx, const Sn
     const ConsistentMesh m = reload(ctx, s);
     std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, false);
     out.push_back(labelsFollowG(m));
-    InvariantCheck edges = check("every cusp edge is an interior FB edge (§6.2 d, Fig. 18b)");
-    for (const auto& [k, tag] : m.edgeTags()) {
-        if (!(tag & kCuspEdge))
-            continue;
-        const auto [x, y] = ConsistentMesh::edgeFromKey(k);
-        if (static_cast<int>(m.vertex(x).label) * static_cast<int>(m.vertex(y).label) >= 0 ||
-            m.faceOfHalfedge(x, y) == kInvalidIndex || m.faceOfHalfedge(y, x) == kInvalidIndex)
-            violate(edges, "edge " + std::to_string(x) + "-" + std::to_string(y));
-    }
-    out.push_back(edges);
-    InvariantCheck apart = check("no face has two cusp edges (each cusp vertex gets valence 4)");
-    for (Index f = 0; f < m.faceCount(); ++f)
-        if (cuspEdgesOf(m, m.face(f)) > 1)
-            violate(apart, describeFace(m, f));
-    out.push_back(apart);
+    for (InvariantCheck& c : cuspEdgeChecks(m))
+        out.push_back(std::move(c));
     return out;
 }
 

@@ -59,6 +59,33 @@ FlipFold flipFolds(const ConsistentMesh& m, Index a, Index b) {
     return out;
 }
 
+bool edgeInterpolates(const ConsistentMesh& m, const Preimage& a, const Preimage& b) {
+    for (int k = 1; k < 10; ++k)
+        if (!m.interpolate(a, b, 0.1 * k))
+            return false;
+    return true;
+}
+
+bool splitKeepsCharts(const ConsistentMesh& m, Index a, Index b, const Preimage& p) {
+    const auto [c, d] = m.oppositeVertices(a, b);
+    const Preimage &pa = m.vertex(a).preimage, &pb = m.vertex(b).preimage;
+    for (Index x : {a, b, c, d})
+        if (x != kInvalidIndex && !edgeInterpolates(m, p, m.vertex(x).preimage))
+            return false;
+    for (const auto& [x, y, z] : {std::array{a, b, c}, std::array{b, a, d}}) {
+        if (z == kInvalidIndex)
+            continue;
+        const Preimage &px = x == a ? pa : pb, &py = y == a ? pa : pb;
+        const Preimage& pz = m.vertex(z).preimage;
+        for (const auto& tri : {std::array{px, p, pz}, std::array{p, py, pz}}) {
+            const std::optional<int> o = m.parameterOrientation(tri);
+            if (!o || *o <= 0)
+                return false;
+        }
+    }
+    return true;
+}
+
 bool moveFolds3d(const ConsistentMesh& m, Index v, const Vec3& position) {
     for (Index f : m.vertexFaces(v)) {
         std::array<Vec3, 3> p;

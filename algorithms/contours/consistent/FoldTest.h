@@ -50,6 +50,17 @@ inline bool flipWouldFold(const ConsistentMesh& m, Index a, Index b) {
 // The triangle (corner preimages) is counter-clockwise in every common chart.
 bool keepsParameterOrientation(const ConsistentMesh& m, const std::array<Preimage, 3>& corners);
 
+// Appendix B along a whole new edge, not only at its midpoint: the segment
+// between two preimages interpolates at 9 interior points (near a domain
+// corner it can cross a third domain face, where interpolation, and the
+// later root search on the edge, fails).
+bool edgeInterpolates(const ConsistentMesh& m, const Preimage& a, const Preimage& b);
+
+// Splitting edge a-b at preimage p keeps every new face unfolded in
+// parameter space with a common chart, and every new edge interpolable
+// (appendix B; the mesh's post-conditions). The 3D half is the caller's.
+bool splitKeepsCharts(const ConsistentMesh& m, Index a, Index b, const Preimage& p);
+
 // Would moving vertex v to `position` turn one of its faces over in 3D (a
 // face's new normal against its current one)? The parameter-space half is
 // shiftKeepsParameterOrientation() (Shiftability.h).
