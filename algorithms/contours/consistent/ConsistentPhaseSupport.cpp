@@ -624,4 +624,13 @@ std::vector<InvariantCheck> cuspEdgeChecks(const ConsistentMesh& m) {
     return {edges, apart};
 }
 
+std::vector<InvariantCheck> cuspPhaseChecks(const PhaseContext& ctx, const Snapshot& s) {
+    const ConsistentMesh m = reload(ctx, s);
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, false);
+    out.push_back(labelsFollowG(m));
+    for (InvariantCheck& c : cuspEdgeChecks(m))
+        out.push_back(std::move(c));
+    return out;
+}
+
 } // namespace contour::consistent

@@ -93,5 +93,8 @@ int cuspEdgesOf(const ConsistentMesh& m, const Triangle& t);
 // cusp edge is an interior FB edge, and no face has two cusp edges (each
 // cusp vertex gets valence 4).
 std::vector<InvariantCheck> cuspEdgeChecks(const ConsistentMesh& m);
+// The post-conditions of cusp detection and of cusp refinement: phaseChecks
+// before contour insertion, labelsFollowG and cuspEdgeChecks.
+std::vector<InvariantCheck> cuspPhaseChecks(const PhaseContext& ctx, const Snapshot& s);
 
 } // namespace contour::consistent

@@ -20,12 +20,7 @@ void runCuspRefinement(const PhaseContext& ctx, Snapshot& s) {
 }
 
 std::vector<InvariantCheck> checkCuspRefinement(const PhaseContext& ctx, const Snapshot& s) {
-    const ConsistentMesh m = reload(ctx, s);
-    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, false);
-    out.push_back(labelsFollowG(m));
-    for (InvariantCheck& c : cuspEdgeChecks(m))
-        out.push_back(std::move(c));
-    return out;
+    return cuspPhaseChecks(ctx, s);
 }
 
 } // namespace
