@@ -22,11 +22,9 @@ Method makeConsistentContourMethod() {
         "A per-view triangulation of the smooth surface whose contour generator is meant to be "
         "topologically equivalent to the smooth one (Bénard, Hertzmann & Kass 2014), built by "
         "the sub-phases of §6 in the paper's order, then the contour generator (edges between "
-        "F-VBO and B-VBO faces) chained. Known gap: inconsistent faces remain (about 0.001-0.013 % "
-        "of the faces per view on average on ConTesse's meshes; at most 0.05 % on every view "
-        "of bob_controlmesh, bigguy, spot_quadrangulated, bob_quad, fertility and "
-        "killeroo_small, not yet on spot_control_mesh (2 of 26 views); 0 on a sphere, "
-        "ellipsoid and torus, a few near cusps on a bumpy torus); every phase counts them and "
+        "F-VBO and B-VBO faces) chained. Inconsistent faces can remain (0-0.005 % of the "
+        "faces per view on average on ConTesse's meshes, at most 0.015 % on any of their 26 "
+        "views; 0 on a sphere, ellipsoid, torus and bumpy torus); every phase counts them and "
         "the Overlays toolbar outlines them. Against a dense ground truth, contour loops match "
         "in 36 of 36 views on every test shape and cusp counts in 34-36.";
     m.parameters = {
