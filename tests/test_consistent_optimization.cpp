@@ -201,6 +201,16 @@ void compareOnOff(const std::vector<Snapshot>& offRun, const std::vector<Snapsho
     QVERIFY2(worse.empty(), worse.c_str());
 }
 
+// The moves at cusps added in session 10 (new radial ends at cusps, the
+// disc re-triangulation at cusps' radial ends) off: an on/off slot measured
+// before them then still measures its own move. They clear the few faces
+// the Debug builds' views keep, so without this those slots compare 0 with 0.
+void withoutSession10CuspMoves(ParameterSet& p) {
+    p.set("patch-new-radial-cusps", false);
+    p.set("patch-new-radial-cusp-ties", false);
+    p.set("cusp-end-retriangulation-faces", 0);
+}
+
 // Each view run twice from the defaults (Catmull-Clark, cusp-retry off), with
 // configure(p, false) and configure(p, true), the pair checked by
 // compareOnOff, then by the slot's own perView(offRun, onRun). False once a
@@ -489,7 +499,8 @@ private slots:
         const auto cage = loadShape("bob");
         std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
 #ifndef __OPTIMIZE__
-        views.resize(3); // views 0 and 2 gain (2 -> 0 faces each)
+        // Since session 9's ring pairs only view 9 gains (1 -> 0 faces).
+        views = {views[9]};
 #endif
         const Method& m = *findMethod("consistent");
         QVERIFY(ParameterSet::defaults(m.parameters).getBool("extension-push-every-end-final"));
@@ -498,7 +509,10 @@ private slots:
         OnOffCounts t;
         const bool ok = runOnOff(
             cage, views,
-            [](ParameterSet& p, bool on) { p.set("extension-push-every-end-final", on); },
+            [](ParameterSet& p, bool on) {
+                p.set("extension-push-every-end-final", on);
+                withoutSession10CuspMoves(p);
+            },
             [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
                 QCOMPARE(after(offRun, "normal-wiggle").counter(counter, -1.0), 0.0);
                 pushed += after(onRun, "normal-wiggle").counter(counter, 0.0);
@@ -530,7 +544,11 @@ private slots:
         double moved = 0.0;
         OnOffCounts t;
         const bool ok = runOnOff(
-            cage, views, [](ParameterSet& p, bool on) { p.set("normal-wiggle-ring-pairs", on); },
+            cage, views,
+            [](ParameterSet& p, bool on) {
+                p.set("normal-wiggle-ring-pairs", on);
+                withoutSession10CuspMoves(p);
+            },
             [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
                 QCOMPARE(after(offRun, "normal-wiggle").counter(counter, -1.0), 0.0);
                 moved += after(onRun, "normal-wiggle").counter(counter, 0.0);
