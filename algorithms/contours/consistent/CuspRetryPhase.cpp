@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -146,12 +147,14 @@ void runCuspRetry(const PhaseContext& ctx, Snapshot& s, const std::vector<Phase>
     long long best = before;
     int tried = 0, adopted = 0, broken = 0;
     CuspRefinementCounts kept;
+    CuspRefinementSettings keptVariant = settings;
     for (size_t first = 0; first < variants.size() && best > 0; first += wave) {
         const size_t count = std::min(wave, variants.size() - first);
         std::vector<Run> runs(count);
         tbb::parallel_for(size_t(0), count,
                           [&](size_t k) { runs[k] = runVariant(variants[first + k]); });
-        for (Run& run : runs) {
+        for (size_t k = 0; k < count; ++k) {
+            Run& run = runs[k];
             if (best == 0)
                 break;
             ++tried;
@@ -168,6 +171,7 @@ void runCuspRetry(const PhaseContext& ctx, Snapshot& s, const std::vector<Phase>
             best = static_cast<long long>(after);
             adopted = tried;
             kept = run.counts;
+            keptVariant = variants[first + k];
             const int index = s.phaseIndex;
             const std::string name = s.phaseName;
             s = std::move(run.snapshot);
@@ -184,6 +188,22 @@ void runCuspRetry(const PhaseContext& ctx, Snapshot& s, const std::vector<Phase>
     s.setCounter("cusp retry: better runs breaking a post-condition", broken);
     s.setCounter("cusp retry: cusps refined around", static_cast<double>(kept.cusps));
     s.setCounter("cusp retry: edges halved", static_cast<double>(kept.splits));
+    // The stepper shows the first run before this phase: say so when this
+    // snapshot is another run's mesh.
+    std::ostringstream note;
+    if (adopted > 0)
+        note << "cusp retry: this mesh is a second run (initialization to contour-refinement) "
+                "with the mesh refined around "
+             << kept.cusps << " cusp(s) (" << keptVariant.rings << " ring(s), "
+             << keptVariant.levels << " level(s), " << kept.splits << " edges halved; run "
+             << adopted << " of " << tried << "): inconsistent faces " << before << " -> " << best
+             << ". The earlier phases' snapshots show the first run.";
+    else
+        note << "cusp retry: " << tried << " runs refined around " << targets.size()
+             << " cusps at inconsistent faces; none had fewer than " << before
+             << " inconsistent faces and kept every post-condition, so the first run's mesh is "
+                "kept.";
+    s.notes.push_back(note.str());
 }
 
 std::vector<InvariantCheck> checkCuspRetry(const PhaseContext& ctx, const Snapshot& s) {
