@@ -104,4 +104,13 @@ inline std::shared_ptr<const PolygonMesh> sampleOrShape(const std::string& name,
     return shape(name, resolution);
 }
 
+// A mesh of ../shared/meshes (`name` without extension), or null when it is
+// absent: the caller skips (QSKIP must be called from the test function).
+inline std::shared_ptr<const PolygonMesh> sharedMesh(const std::string& name) {
+    const std::string path = std::string(CONTOUR_SHARED_DIR) + "/meshes/" + name + ".obj";
+    if (!std::filesystem::exists(path))
+        return nullptr;
+    return std::make_shared<const PolygonMesh>(readMesh(path));
+}
+
 } // namespace contour::testing

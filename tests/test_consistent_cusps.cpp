@@ -682,10 +682,9 @@ private slots:
     // detection now moves such a cusp along the contour until the root
     // converges.
     void cuspRootsConvergeAtPatchBoundaries() {
-        const std::string path = std::string(CONTOUR_SHARED_DIR) + "/meshes/bigguy.obj";
-        if (!std::filesystem::exists(path))
+        const auto cage = sharedMesh("bigguy");
+        if (!cage)
             QSKIP("../shared/meshes/bigguy.obj is absent");
-        const auto cage = std::make_shared<const PolygonMesh>(readMesh(path));
         const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
         // Debug builds (invariants on): one view, the contour search only
         // (the subdivided search takes minutes there).

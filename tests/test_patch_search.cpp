@@ -8,12 +8,10 @@
 // mesh would be without it) below a ceiling. Switched off, it passes the
 // mesh through.
 #include "ContourTestSupport.h"
-#include "mesh/MeshReader.h"
 #include "pipeline/FieldNames.h"
 
 #include <QtTest>
 #include <algorithm>
-#include <filesystem>
 #include <stdexcept>
 
 using namespace contour;
@@ -332,10 +330,9 @@ private slots:
     // edges at cusps added, no post-condition violated (Debug: the cusp
     // valence and radial-edge checks enforced).
     void newRadialCuspsRemoveFaces() {
-        const std::string path = std::string(CONTOUR_SHARED_DIR) + "/meshes/bigguy.obj";
-        if (!std::filesystem::exists(path))
+        const auto cage = sharedMesh("bigguy");
+        if (!cage)
             QSKIP("../shared/meshes/bigguy.obj is absent");
-        const auto cage = std::make_shared<const PolygonMesh>(readMesh(path));
         const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
 #ifdef __OPTIMIZE__
         const std::vector<Camera> cameras = {all[4], all[11]};
