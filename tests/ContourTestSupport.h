@@ -1,7 +1,7 @@
 #pragma once
 // Shared set-up for the contour suites: run a method to the end on a shape.
 #include "contours/Methods.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
 #include "pipeline/Runner.h"
 

@@ -1,7 +1,7 @@
 #include "DenseGroundTruth.h"
 
 #include "camera/Facing.h"
-#include "contours/consistent/ConsistentMesh.h"
+#include "contours/consistent/mesh/ConsistentMesh.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SurfaceFields.h"
 

@@ -1,5 +1,5 @@
 // Chaining segments into polylines: loops, open chains, bifurcations.
-#include "contours/ContourChaining.h"
+#include "contours/common/ContourChaining.h"
 
 #include <QtTest>
 

@@ -6,7 +6,7 @@
 #include "export/JsonReport.h"
 #include "export/SessionFile.h"
 #include "export/SvgWriter.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
 #include "pipeline/FieldNames.h"
 

@@ -6,9 +6,9 @@
 // faces after initialization and contour insertion; the later phases have
 // their own suites (cusps, radialization, optimization).
 #include "ContourTestSupport.h"
-#include "contours/consistent/ConsistentMesh.h"
-#include "contours/consistent/VertexBasedOrientation.h"
-#include "mesh/MeshReader.h"
+#include "contours/consistent/mesh/ConsistentMesh.h"
+#include "contours/consistent/predicates/VertexBasedOrientation.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 

@@ -8,11 +8,11 @@
 // snapping; and the wiggle options aimed at the faces around cusps.
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
-#include "contours/consistent/ConsistentMesh.h"
-#include "contours/consistent/ConsistentPhaseSupport.h"
-#include "contours/consistent/ContourCuspSearch.h"
-#include "contours/consistent/JointRootSearch.h"
-#include "mesh/MeshReader.h"
+#include "contours/consistent/mesh/ConsistentMesh.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/numerics/ContourCuspSearch.h"
+#include "contours/consistent/numerics/JointRootSearch.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 

@@ -8,7 +8,7 @@
 // The asserted ceilings are the figures measured when the phases were
 // written (with a margin), so a regression fails.
 #include "ContourTestSupport.h"
-#include "contours/consistent/TriangleQuality.h"
+#include "contours/consistent/predicates/TriangleQuality.h"
 #include "pipeline/FieldNames.h"
 
 #include <QtTest>

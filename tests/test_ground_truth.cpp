@@ -5,7 +5,7 @@
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
 #include "camera/Facing.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 

@@ -10,7 +10,7 @@
 #include "SceneView3D.h"
 #include "SurfaceFormat.h"
 #include "contours/Methods.h"
-#include "mesh/MeshWriter.h"
+#include "mesh/io/MeshWriter.h"
 #include "mesh/ProceduralShapes.h"
 
 #include <QApplication>

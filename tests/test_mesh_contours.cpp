@@ -1,7 +1,7 @@
 // Mesh contours (tutorial §3.4, appendix B/C): loops on known shapes, the
 // convex/concave classification, boundaries, and post-conditions.
 #include "ContourTestSupport.h"
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 #include "pipeline/FieldNames.h"
 
 #include <QtTest>

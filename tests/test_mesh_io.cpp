@@ -3,9 +3,9 @@
 // the problem; the same mesh reads identically from every format; writers
 // round-trip exactly, PLY labels included.
 #include "mesh/MeshError.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "mesh/MeshValidation.h"
-#include "mesh/MeshWriter.h"
+#include "mesh/io/MeshWriter.h"
 #include "mesh/PolygonTriangulation.h"
 
 #include <QDir>

@@ -1,6 +1,6 @@
 // Exact predicates: sign conventions, and exactness where plain doubles fail.
 #include "camera/Facing.h"
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 
 #include <QtTest>
 #include <cmath>

@@ -7,9 +7,9 @@
 //     26-view protocol on the Catmull-Clark sphere, torus and spot, with the
 //     inconsistent-face counts before and after (qInfo).
 #include "ContourTestSupport.h"
-#include "contours/consistent/RadialTriangles.h"
-#include "geometry/Predicates.h"
-#include "mesh/MeshReader.h"
+#include "contours/consistent/edits/RadialTriangles.h"
+#include "core/Predicates.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceFields.h"

@@ -21,7 +21,7 @@
 #include "SurfaceFormat.h"
 #include "export/DiagnosticSnapshot.h"
 #include "export/SessionFile.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 
 #include <QAction>

@@ -6,7 +6,7 @@
 // second fundamental form, transferAcrossEdge round trips, creases from OBJ
 // tags, and bad input.
 #include "mesh/MeshError.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "surface/SubdivisionSurface.h"
 
 #include <QDir>

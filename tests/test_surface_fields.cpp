@@ -9,8 +9,8 @@
 // radial curvature -1/R, Gaussian curvature 1/R^2 and mean curvature -1/R.
 #include "ContourTestSupport.h"
 #include "camera/Facing.h"
-#include "contours/SurfacePhase.h"
-#include "mesh/MeshReader.h"
+#include "contours/common/SurfacePhase.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceFields.h"

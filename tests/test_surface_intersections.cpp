@@ -1,6 +1,6 @@
 // Surface–surface intersection curves (issue 5 item 2): exact triangle pairs
 // from CGAL, chained through mesh edges/vertices into polylines.
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
 #include "visibility/SurfaceIntersections.h"
 

@@ -16,7 +16,7 @@
 // writes a picture of every comparison there.
 #include "ContourTestSupport.h"
 #include "DepthBufferCheck.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 
 #include <QtTest>
 #include <chrono>

@@ -8,7 +8,7 @@
 // flip or compact the mesh may give it another element: the inspector always
 // shows what the index names now).
 #include "mesh/TriangleMesh.h"
-#include "mesh/Types.h"
+#include "core/Types.h"
 
 #include <QObject>
 #include <QString>

@@ -1,6 +1,6 @@
 #include "camera/Camera.h"
 
-#include "io/AtomicFile.h"
+#include "core/AtomicFile.h"
 
 #include <cmath>
 #include <fstream>

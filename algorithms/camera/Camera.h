@@ -2,7 +2,7 @@
 // Analysis camera: perspective (eye, target, up, vertical field of view) or
 // orthographic (same frame, a world-space view height). Projects to pixels of
 // a viewport with x to the right and y down, origin at the top-left corner.
-#include "mesh/Types.h"
+#include "core/Types.h"
 
 #include <nlohmann/json_fwd.hpp>
 #include <string>

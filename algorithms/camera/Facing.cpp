@@ -1,6 +1,6 @@
 #include "camera/Facing.h"
 
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 
 namespace contour {
 

@@ -3,8 +3,8 @@
 #include "export/JsonReport.h"
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
-#include "io/AtomicFile.h"
-#include "mesh/MeshWriter.h"
+#include "core/AtomicFile.h"
+#include "mesh/io/MeshWriter.h"
 
 #include <atomic>
 #include <chrono>

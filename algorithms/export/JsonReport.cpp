@@ -1,7 +1,7 @@
 #include "export/JsonReport.h"
 
 #include "export/ProjectedCurves.h"
-#include "io/AtomicFile.h"
+#include "core/AtomicFile.h"
 #include "pipeline/FieldNames.h"
 
 #include <cmath>

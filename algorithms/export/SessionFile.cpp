@@ -1,6 +1,6 @@
 #include "export/SessionFile.h"
 
-#include "io/AtomicFile.h"
+#include "core/AtomicFile.h"
 
 #include <algorithm>
 #include <cmath>

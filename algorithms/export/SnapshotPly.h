@@ -7,7 +7,7 @@
 // Vector (Vec3) and edge fields have no PLY property of their own and are
 // left out, as is a field whose size does not match the mesh or whose name
 // is not a valid property name: `skipped` says which and why.
-#include "mesh/PlyLabels.h"
+#include "mesh/io/PlyLabels.h"
 #include "pipeline/Snapshot.h"
 
 #include <string>

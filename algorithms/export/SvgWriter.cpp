@@ -1,7 +1,7 @@
 #include "export/SvgWriter.h"
 
 #include "export/ProjectedCurves.h"
-#include "io/AtomicFile.h"
+#include "core/AtomicFile.h"
 #include "pipeline/ViewGraph.h"
 
 #include <array>

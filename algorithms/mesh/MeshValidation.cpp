@@ -1,6 +1,6 @@
 #include "mesh/MeshValidation.h"
 
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 #include "mesh/MeshError.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "mesh/PolygonTriangulation.h"
 
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 
 #include <cmath>
 

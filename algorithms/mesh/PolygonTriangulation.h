@@ -1,7 +1,7 @@
 #pragma once
 // Triangulating one planar-ish polygon of a cage (n >= 5 corners; quads and
 // triangles are handled by PolygonMesh::triangulate directly).
-#include "mesh/Types.h"
+#include "core/Types.h"
 
 #include <array>
 #include <span>

@@ -3,7 +3,7 @@
 // 3f, 3f+1, 3f+2, and half-edge 3f+i runs from corner i to corner i+1. Only the
 // opposite links are stored. Boundary half-edges have no opposite (kInvalidIndex).
 // The mesh is immutable after construction; snapshots share it between phases.
-#include "mesh/Types.h"
+#include "core/Types.h"
 
 #include <array>
 #include <span>

@@ -1,7 +1,7 @@
 #pragma once
 // Curves on the working mesh: what the contour methods extract and the view
 // graph cuts into visibility pieces.
-#include "mesh/Types.h"
+#include "core/Types.h"
 
 #include <vector>
 

@@ -4,7 +4,7 @@
 // with exact predicates on the input doubles, so that no crossing is missed
 // or invented by rounding. The only CGAL user of the visibility core's 2D
 // part: its templates compile here once.
-#include "mesh/Types.h"
+#include "core/Types.h"
 
 #include <functional>
 #include <span>

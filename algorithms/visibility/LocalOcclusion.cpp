@@ -1,6 +1,6 @@
 #include "visibility/LocalOcclusion.h"
 
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 
 namespace contour {
 

@@ -1,6 +1,6 @@
 #include "visibility/RayCaster.h"
 
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "visibility/ViewGraphBuilder.h"
 
-#include "geometry/Predicates.h"
+#include "core/Predicates.h"
 #include "visibility/ImageIntersections.h"
 #include "visibility/LocalOcclusion.h"
 #include "visibility/NearFaceTest.h"

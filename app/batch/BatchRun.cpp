@@ -6,10 +6,10 @@
 #include "export/JsonReport.h"
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
-#include "io/AtomicFile.h"
+#include "core/AtomicFile.h"
 #include "mesh/MeshError.h"
-#include "mesh/MeshReader.h"
-#include "mesh/MeshWriter.h"
+#include "mesh/io/MeshReader.h"
+#include "mesh/io/MeshWriter.h"
 #include "pipeline/Runner.h"
 #include "pipeline/ViewGraph.h"
 

@@ -1,7 +1,7 @@
 // contour-shapes: writes the procedural shapes (mesh/ProceduralShapes.h) as
 // OBJ files, e.g. to regenerate samples/:
 //   contour-shapes --out samples
-#include "mesh/MeshWriter.h"
+#include "mesh/io/MeshWriter.h"
 #include "mesh/ProceduralShapes.h"
 
 #include <CLI/CLI.hpp>

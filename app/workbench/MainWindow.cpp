@@ -16,7 +16,7 @@
 #include "contours/Methods.h"
 #include "export/CurveComparison.h"
 #include "mesh/MeshError.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 
 #include <QAction>

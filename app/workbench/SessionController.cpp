@@ -6,7 +6,7 @@
 #include "SceneView3D.h"
 #include "contours/Methods.h"
 #include "mesh/MeshError.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 
 #include <QAction>
 #include <QApplication>

@@ -56,7 +56,7 @@
 #include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
 #include "pipeline/FieldNames.h"
 #include "pipeline/Runner.h"

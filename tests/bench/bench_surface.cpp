@@ -11,7 +11,7 @@
 // visit them). Besides wall-clock rates, the one-thread rate per second of
 // process CPU time is printed: it stays meaningful when other processes
 // share the cores.
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
 #include "surface/SubdivisionSurface.h"
 

@@ -46,7 +46,7 @@
 #include "DepthBufferCheck.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
-#include "mesh/MeshReader.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/Runner.h"
 
 #include <CLI/CLI.hpp>

@@ -3,8 +3,8 @@
 // topologically equivalent to the smooth one. The method's parameters and
 // phases come from the sub-phase files, in the paper's order (§6).
 #include "contours/Methods.h"
-#include "contours/SurfacePhase.h"
-#include "contours/consistent/ConsistentPhaseSupport.h"
+#include "contours/common/SurfacePhase.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "visibility/SimplificationPhase.h"
 #include "visibility/VisibilityPhase.h"

@@ -1,0 +1,65 @@
+#include "contours/consistent/phases/OptimizationPhaseSupport.h"
+
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/edits/RadialTriangles.h"
+
+namespace contour::consistent {
+
+bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
+    return w != kInvalidIndex && m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
+}
+
+void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
+                  const std::string& sweepParameter) {
+    s.setCounter("inconsistent faces before", static_cast<double>(t.before));
+    s.setCounter(what + " tried", static_cast<double>(t.tried));
+    s.setCounter(what + " accepted", static_cast<double>(t.accepted));
+    s.setCounter("sweeps", t.sweeps);
+    if (t.sweepLimitHit)
+        s.notes.push_back("stopped by " + sweepParameter + " (" + std::to_string(t.sweeps) +
+                          " sweeps) while moves still improved consistency");
+}
+
+std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Snapshot& s,
+                                               bool radialOnSurface) {
+    const ConsistentMesh m = reload(ctx, s);
+    std::vector<InvariantCheck> out = phaseChecks(ctx, s, m, true);
+    if (radialOnSurface && ctx.parameters.has("radial-root-tolerance"))
+        out.push_back(radialEdgeCheck(ctx, m));
+    InvariantCheck monotone = check("the phase did not increase the inconsistent faces");
+    const double before = s.counter("inconsistent faces before", -1.0);
+    const long long after = static_cast<long long>(inconsistentFaces(m).size());
+    if (before >= 0.0 && static_cast<double>(after) > before)
+        violate(monotone, std::to_string(after) + " inconsistent faces after, " +
+                              std::to_string(static_cast<long long>(before)) + " before");
+    out.push_back(monotone);
+    return out;
+}
+
+void sweepInconsistent(const PhaseContext& ctx, ConsistentMesh& m, int maxSweeps,
+                       bool visitVertices, OptimizationTally& tally,
+                       const std::function<bool(Index)>& tryMove) {
+    std::vector<Index> faces = inconsistentFaces(m);
+    tally.before = static_cast<long long>(faces.size());
+    while (tally.sweeps < maxSweeps && !faces.empty()) {
+        ++tally.sweeps;
+        long long accepted = 0;
+        for (Index x : visitVertices ? verticesOf(m, faces) : faces) {
+            ctx.checkCancelled();
+            // Face moves keep face indices valid within a sweep; an earlier
+            // move may have fixed or rewritten this face.
+            if (!visitVertices && faceIsConsistent(m, x))
+                continue;
+            ++tally.tried;
+            accepted += tryMove(x);
+        }
+        tally.accepted += accepted;
+        if (accepted == 0)
+            break;
+        faces = inconsistentFaces(m);
+        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
+    }
+}
+
+} // namespace contour::consistent
