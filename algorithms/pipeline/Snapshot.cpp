@@ -39,6 +39,24 @@ void Snapshot::setCounter(const std::string& name, double value) {
     counters.push_back({name, value});
 }
 
+double Snapshot::counter(const CounterName& name, double fallback) const {
+    for (const Counter& c : counters)
+        if (c.key == name.key || (c.key.empty() && c.name == name.label))
+            return c.value;
+    return fallback;
+}
+
+void Snapshot::setCounter(const CounterName& name, double value) {
+    // A counter first set by its label alone is the same counter.
+    for (Counter& c : counters)
+        if (c.key == name.key || (c.key.empty() && c.name == name.label)) {
+            c.key = name.key;
+            c.value = value;
+            return;
+        }
+    counters.push_back({std::string(name.label), value, std::string(name.key)});
+}
+
 long long Snapshot::invariantViolations() const {
     long long n = 0;
     for (const InvariantCheck& c : invariants)
@@ -51,10 +69,10 @@ Snapshot makeInputSnapshot(std::shared_ptr<const PolygonMesh> cage) {
     s.mesh = std::make_shared<const TriangleMesh>(cage->triangulate());
     s.cage = std::move(cage);
     s.curves = std::make_shared<const std::vector<Polyline>>();
-    s.setCounter("faces", s.mesh->faceCount());
-    s.setCounter("vertices", s.mesh->vertexCount());
-    s.setCounter("edges", s.mesh->edgeCount());
-    s.setCounter("boundary edges", s.mesh->boundaryEdgeCount());
+    s.setCounter(counters::kFaces, s.mesh->faceCount());
+    s.setCounter(counters::kVertices, s.mesh->vertexCount());
+    s.setCounter(counters::kEdges, s.mesh->edgeCount());
+    s.setCounter(counters::kBoundaryEdges, s.mesh->boundaryEdgeCount());
     return s;
 }
 

@@ -5,6 +5,7 @@
 // the exporters read fields by name (FieldNames.h), so they work for every
 // method through this one type.
 #include "mesh/PolygonMesh.h"
+#include "pipeline/CounterNames.h"
 #include "pipeline/Curve.h"
 #include "pipeline/ViewGraph.h"
 
@@ -29,8 +30,9 @@ struct Field {
 };
 
 struct Counter {
-    std::string name;
+    std::string name; // the label (CounterName::label)
     double value = 0.0;
+    std::string key; // CounterName::key; empty for a counter set by label only
 };
 
 struct InvariantCheck {
@@ -72,6 +74,9 @@ struct Snapshot {
     void setField(const std::string& name, Field field);
     double counter(const std::string& name, double fallback = -1.0) const;
     void setCounter(const std::string& name, double value);
+    // By key (CounterNames.h): the preferred form.
+    double counter(const CounterName& name, double fallback = -1.0) const;
+    void setCounter(const CounterName& name, double value);
     long long invariantViolations() const;
 };
 
