@@ -2,11 +2,11 @@
 // of g = (c - p) · n interpolated linearly over each triangle from its
 // vertices, one segment per face, chained across shared edges.
 #include "camera/Facing.h"
-#include "contours/Methods.h"
 #include "contours/common/BoundaryCurves.h"
 #include "contours/common/ContourChaining.h"
 #include "contours/common/EdgePolylines.h"
 #include "contours/common/FacingPhase.h"
+#include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "contours/common/VertexNormalCache.h"
 #include "mesh/VertexNormals.h"

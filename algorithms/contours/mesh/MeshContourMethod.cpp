@@ -1,10 +1,10 @@
 // Mesh contours (tutorial §3.4, §3.7.1 brute force; convexity from appendix B
 // and C): edges between a front face and a back face of the triangle mesh.
 #include "camera/Facing.h"
-#include "contours/Methods.h"
 #include "contours/common/BoundaryCurves.h"
 #include "contours/common/EdgePolylines.h"
 #include "contours/common/FacingPhase.h"
+#include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "core/Predicates.h"
 #include "pipeline/FieldNames.h"

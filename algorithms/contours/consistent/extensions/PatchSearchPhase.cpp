@@ -65,12 +65,12 @@
 // -> on): see the parameter patch-search. After the normal wiggle instead
 // it removes less (with 12-corner patches, bob 73 -> 64 there against
 // 73 -> 48 here), and running it in both places removed nothing more.
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/edits/RingRetriangulation.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 #include "contours/consistent/predicates/TriangulationCost.h"
 #include "pipeline/FieldNames.h"

@@ -20,12 +20,12 @@
 // (measured over 26 views: spot 97 -> 89, bob 91 -> 72, bumpy torus 21 -> 14
 // final inconsistent faces, no view raised; placed before the optimization
 // flips it removes more on bob but raises some views of spot).
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/edits/RingRetriangulation.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 #include "contours/consistent/predicates/TriangulationCost.h"
 

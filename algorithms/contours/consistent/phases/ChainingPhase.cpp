@@ -1,8 +1,8 @@
 // The consistent mesh's contour generator (Bénard 2014 §8.1, notes §3.1):
 // the edges between an F-VBO face and a B-VBO face, chained into polylines.
 #include "contours/common/EdgePolylines.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
 #include "pipeline/FieldNames.h"
 
 namespace contour::consistent {

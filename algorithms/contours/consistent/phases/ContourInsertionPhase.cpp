@@ -1,6 +1,6 @@
 // Contour vertex insertion (Bénard 2014 §6.2 e-f, Fig. 15d-f; notes §2.2).
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <cmath>

@@ -1,9 +1,9 @@
 // Cusp detection (Bénard 2014 §6.2 d, Fig. 15d, 16b, 18a-b; notes §1.6, §2.2).
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
-#include "contours/consistent/numerics/JointRootSearch.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/predicates/FoldTest.h"
+#include "contours/consistent/numerics/JointRootSearch.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Initialization (Bénard 2014 §6.1, Fig. 15a-c; notes §2.1).
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
 #include "surface/SurfaceTessellation.h"
 
 #include <algorithm>

@@ -1,10 +1,10 @@
 // Edge flipping of the optimization phase (Bénard 2014 §6.4 "Edge
 // Flipping"; notes §2.4.2).
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/edits/RadialTriangles.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/edits/RadialTriangles.h"
 
 #include <initializer_list>
 

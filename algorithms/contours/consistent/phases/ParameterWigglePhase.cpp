@@ -1,10 +1,10 @@
 // Vertex wiggling in parameter space (Bénard 2014 §6.4; notes §2.4.3).
-#include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/edits/RadialTriangles.h"
-#include "contours/consistent/numerics/IllinoisBracket.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/numerics/IllinoisBracket.h"
+#include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <algorithm>

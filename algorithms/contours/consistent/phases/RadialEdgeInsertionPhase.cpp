@@ -1,11 +1,11 @@
 // Radial edge insertion (Bénard 2014 §6.3 g, Fig. 15g, 16d, 17, 18e; notes
 // §2.3, §6.1 item 6).
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/predicates/FoldTest.h"
+#include "contours/consistent/numerics/JointRootSearch.h"
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/edits/RadialTriangles.h"
-#include "contours/consistent/numerics/JointRootSearch.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/predicates/FoldTest.h"
 
 #include <algorithm>
 #include <cmath>

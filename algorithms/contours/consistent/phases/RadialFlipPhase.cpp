@@ -1,9 +1,9 @@
 // Edge flipping towards standard radial triangles (Bénard 2014 §6.3 h,
 // Fig. 15h, 16e; notes §2.3, §6.1 item 7).
-#include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/predicates/FoldTest.h"
+#include "contours/consistent/edits/RadialTriangles.h"
 
 #include <algorithm>
 #include <deque>
