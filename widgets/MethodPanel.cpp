@@ -86,6 +86,10 @@ public:
 MethodPanel::MethodPanel(QWidget* parent) : QWidget(parent) {
     selector_ = new QComboBox(this);
     selector_->setToolTip(tr("Contour method"));
+    // Long method names are elided in the closed box so the dock can stay
+    // narrow; the popup shows them whole.
+    selector_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    selector_->setMinimumContentsLength(16);
     auto* model = qobject_cast<QStandardItemModel*>(selector_->model());
     for (const Method& m : contourMethods()) {
         auto* item = new QStandardItem(QString::fromStdString(m.label));
