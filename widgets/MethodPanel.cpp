@@ -6,10 +6,13 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QRegularExpression>
 #include <QSpinBox>
+#include <QSizePolicy>
 #include <QStandardItemModel>
+#include <QToolButton>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <cfloat>
@@ -30,6 +33,14 @@ double numeric(const ParameterValue& value) {
     if (const bool* b = std::get_if<bool>(&value))
         return *b ? 1.0 : 0.0;
     return 0.0;
+}
+
+// "cusp-detection" -> "Cusp detection".
+QString groupTitle(const std::string& group) {
+    QString title = QString::fromStdString(group).replace(QLatin1Char('-'), QLatin1Char(' '));
+    if (!title.isEmpty())
+        title[0] = title[0].toUpper();
+    return title;
 }
 
 bool hasRange(const ParameterSpec& spec) {
@@ -75,6 +86,10 @@ public:
 MethodPanel::MethodPanel(QWidget* parent) : QWidget(parent) {
     selector_ = new QComboBox(this);
     selector_->setToolTip(tr("Contour method"));
+    // Long method names are elided in the closed box so the dock can stay
+    // narrow; the popup shows them whole.
+    selector_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    selector_->setMinimumContentsLength(16);
     auto* model = qobject_cast<QStandardItemModel*>(selector_->model());
     for (const Method& m : contourMethods()) {
         auto* item = new QStandardItem(QString::fromStdString(m.label));
@@ -91,23 +106,39 @@ MethodPanel::MethodPanel(QWidget* parent) : QWidget(parent) {
     }
 
     description_ = new QLabel(this);
+    description_->setObjectName(QStringLiteral("methodDescription"));
     description_->setWordWrap(true);
     description_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    // Wraps to the dock's width instead of widening the panel.
+    QSizePolicy wrapping(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    wrapping.setHeightForWidth(true);
+    description_->setSizePolicy(wrapping);
+
+    presetSelector_ = new QComboBox(this);
+    presetSelector_->setObjectName(QStringLiteral("presetSelector"));
+    auto* presetLabel = new QLabel(tr("Preset"), this);
+    presetLabel->setBuddy(presetSelector_);
+    auto* presetRow = new QHBoxLayout;
+    presetRow->addWidget(presetLabel);
+    presetRow->addWidget(presetSelector_, 1);
 
     formHost_ = new QWidget(this);
-    form_ = new QFormLayout(formHost_);
-    form_->setContentsMargins(0, 0, 0, 0);
-    form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+    sections_ = new QVBoxLayout(formHost_);
+    sections_->setContentsMargins(0, 0, 0, 0);
+    sections_->setSpacing(2);
 
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(selector_);
     layout->addWidget(description_);
+    layout->addLayout(presetRow);
     layout->addWidget(formHost_);
+    layout->addStretch(1);
 
     current_ = selector_->itemData(0, kNameRole).toString();
     rebuildForm();
     connect(selector_, &QComboBox::currentIndexChanged, this, &MethodPanel::onSelectorChanged);
+    connect(presetSelector_, &QComboBox::activated, this, &MethodPanel::onPresetChanged);
 }
 
 QString MethodPanel::methodName() const {
@@ -152,31 +183,140 @@ void MethodPanel::onSelectorChanged(int index) {
     emit methodChanged(current_);
 }
 
+bool MethodPanel::setPreset(const QString& name) {
+    const int index = presetSelector_->findData(name);
+    if (index < 0)
+        return false;
+    presetSelector_->setCurrentIndex(index);
+    onPresetChanged(index);
+    return true;
+}
+
+QString MethodPanel::presetName() const {
+    return presetSelector_->currentData().toString();
+}
+
+void MethodPanel::onPresetChanged(int index) {
+    const Method* m = method();
+    const ParameterPreset* preset =
+        m ? m->preset(presetSelector_->itemData(index).toString().toStdString()) : nullptr;
+    if (!preset)
+        return;
+    setParameters(presetValues(m->parameters, *preset));
+    emit parametersChanged();
+}
+
+QStringList MethodPanel::groups() const {
+    QStringList names;
+    for (const auto& [name, section] : groups_)
+        names.push_back(QString::fromStdString(name));
+    return names;
+}
+
+QToolButton* MethodPanel::groupHeader(const QString& group) const {
+    for (const auto& [name, section] : groups_)
+        if (name == group.toStdString())
+            return section.header;
+    return nullptr;
+}
+
+QWidget* MethodPanel::groupBody(const QString& group) const {
+    for (const auto& [name, section] : groups_)
+        if (name == group.toStdString())
+            return section.body;
+    return nullptr;
+}
+
+bool MethodPanel::isGroupExpanded(const QString& group) const {
+    const QToolButton* header = groupHeader(group);
+    return header && header->isChecked();
+}
+
+void MethodPanel::setGroupExpanded(const QString& group, bool expanded) {
+    if (QToolButton* header = groupHeader(group))
+        header->setChecked(expanded); // toggled shows or hides the body
+}
+
 void MethodPanel::rebuildForm() {
-    while (form_->rowCount() > 0)
-        form_->removeRow(0);
+    for (auto& [name, section] : groups_) {
+        delete section.header;
+        delete section.body;
+    }
+    groups_.clear();
     editors_.clear();
+    presetSelector_->clear();
     const Method* m = method();
     description_->setText(m ? QString::fromStdString(m->description) : QString());
     if (!m)
         return;
+    for (const ParameterPreset& preset : m->presets) {
+        presetSelector_->addItem(QString::fromStdString(preset.name),
+                                 QString::fromStdString(preset.name));
+        presetSelector_->setItemData(presetSelector_->count() - 1,
+                                     QString::fromStdString(preset.description), Qt::ToolTipRole);
+    }
+    presetSelector_->setEnabled(presetSelector_->count() > 1);
+    // One section per group; a short form opens them all, a long one only
+    // the first.
+    const bool expandAll = m->parameters.size() <= 12;
+    std::map<std::string, QFormLayout*> forms;
+    for (const std::string& group : m->parameterGroups()) {
+        int count = 0;
+        for (const ParameterSpec& spec : m->parameters)
+            count += spec.group == group;
+        Section section;
+        const QString name = QString::fromStdString(group);
+        section.header = new QToolButton(formHost_);
+        section.header->setObjectName(QStringLiteral("group-%1-header").arg(name));
+        section.header->setText(tr("%1 (%2)").arg(groupTitle(group)).arg(count));
+        section.header->setCheckable(true);
+        section.header->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
+        section.header->setAutoRaise(true);
+        section.header->setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
+        const int phase = m->phaseIndex(group);
+        if (phase >= 0)
+            section.header->setToolTip(
+                QString::fromStdString(m->phases[static_cast<size_t>(phase)].description));
+        section.body = new QWidget(formHost_);
+        section.body->setObjectName(QStringLiteral("group-%1").arg(name));
+        auto* form = new QFormLayout(section.body);
+        form->setContentsMargins(12, 0, 0, 4);
+        form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+        form->setRowWrapPolicy(QFormLayout::WrapLongRows);
+        forms[group] = form;
+        QToolButton* header = section.header;
+        QWidget* body = section.body;
+        connect(header, &QToolButton::toggled, body, [header, body](bool open) {
+            header->setArrowType(open ? Qt::DownArrow : Qt::RightArrow);
+            body->setVisible(open);
+        });
+        const bool open = expandAll || groups_.empty();
+        header->setChecked(open);
+        header->setArrowType(open ? Qt::DownArrow : Qt::RightArrow);
+        body->setVisible(open);
+        sections_->addWidget(header);
+        sections_->addWidget(body);
+        groups_.emplace_back(group, section);
+    }
     const auto changed = [this] {
         if (!updating_)
             emit parametersChanged();
     };
     for (const ParameterSpec& spec : m->parameters) {
         const QString help = QString::fromStdString(spec.help);
+        QFormLayout* form = forms.at(spec.group);
+        QWidget* host = form->parentWidget();
         QWidget* editor = nullptr;
         switch (spec.type) {
         case ParameterType::Bool: {
-            auto* box = new QCheckBox(formHost_);
+            auto* box = new QCheckBox(host);
             box->setChecked(numeric(spec.defaultValue) != 0.0);
             connect(box, &QCheckBox::toggled, this, changed);
             editor = box;
             break;
         }
         case ParameterType::Int: {
-            auto* box = new QSpinBox(formHost_);
+            auto* box = new QSpinBox(host);
             if (hasRange(spec))
                 box->setRange(static_cast<int>(std::ceil(spec.minimum)),
                               static_cast<int>(std::floor(spec.maximum)));
@@ -189,7 +329,7 @@ void MethodPanel::rebuildForm() {
             break;
         }
         case ParameterType::Double: {
-            auto* box = new DoubleEdit(formHost_);
+            auto* box = new DoubleEdit(host);
             if (hasRange(spec)) {
                 box->setRange(spec.minimum, spec.maximum);
                 box->setSingleStep((spec.maximum - spec.minimum) / 100.0);
@@ -203,7 +343,7 @@ void MethodPanel::rebuildForm() {
             break;
         }
         case ParameterType::Choice: {
-            auto* box = new QComboBox(formHost_);
+            auto* box = new QComboBox(host);
             for (const std::string& choice : spec.choices)
                 box->addItem(QString::fromStdString(choice));
             if (const auto* value = std::get_if<std::string>(&spec.defaultValue))
@@ -215,10 +355,11 @@ void MethodPanel::rebuildForm() {
         }
         editor->setToolTip(help);
         editor->setObjectName(QString::fromStdString(spec.name));
-        auto* label = new QLabel(QString::fromStdString(spec.label), formHost_);
+        auto* label = new QLabel(QString::fromStdString(spec.label), host);
         label->setToolTip(help);
+        label->setWordWrap(true);
         label->setBuddy(editor);
-        form_->addRow(label, editor);
+        form->addRow(label, editor);
         editors_[spec.name] = editor;
     }
 }

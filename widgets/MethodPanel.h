@@ -1,20 +1,26 @@
 #pragma once
 // The method selector (runnable methods from contourMethods(); planned ones
-// listed but disabled, their reason as tooltip) and a parameter form
-// generated from the selected method's ParameterSpecs: bool -> check box,
-// int / double -> spin box with the spec's range, choice -> combo box, help
-// text as tooltip.
+// listed but disabled, their reason as tooltip), the method's description,
+// a preset selector and a parameter form generated from the selected
+// method's ParameterSpecs: one collapsible section per parameter group
+// (a header button and a body, object names "group-NAME-header" and
+// "group-NAME"), bool -> check box, int / double -> spin box with the spec's
+// range, choice -> combo box, help text as tooltip.
 #include "pipeline/Method.h"
 #include "pipeline/Parameters.h"
 
 #include <QString>
 #include <QWidget>
+#include <QStringList>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 class QComboBox;
-class QFormLayout;
 class QLabel;
+class QToolButton;
+class QVBoxLayout;
 
 namespace contour {
 
@@ -45,6 +51,21 @@ public:
     QWidget* editor(const QString& parameterName) const;
 
     QComboBox* methodSelector() const { return selector_; }
+    QComboBox* presetSelector() const { return presetSelector_; }
+    QLabel* descriptionLabel() const { return description_; }
+
+    // Puts the selected method's preset into the form and emits
+    // parametersChanged; false for an unknown name.
+    bool setPreset(const QString& name);
+    // The preset last chosen ("default" after a method change).
+    QString presetName() const;
+
+    // The selected method's parameter groups, in order.
+    QStringList groups() const;
+    QToolButton* groupHeader(const QString& group) const;
+    QWidget* groupBody(const QString& group) const;
+    bool isGroupExpanded(const QString& group) const;
+    void setGroupExpanded(const QString& group, bool expanded);
 
 signals:
     void methodChanged(const QString& name);
@@ -52,13 +73,21 @@ signals:
 
 private:
     void onSelectorChanged(int index);
+    void onPresetChanged(int index);
     void rebuildForm();
+
+    struct Section {
+        QToolButton* header = nullptr;
+        QWidget* body = nullptr;
+    };
 
     QComboBox* selector_;
     QLabel* description_;
-    QFormLayout* form_;
+    QComboBox* presetSelector_;
+    QVBoxLayout* sections_;
     QWidget* formHost_;
     std::map<std::string, QWidget*> editors_;
+    std::vector<std::pair<std::string, Section>> groups_;
     QString current_;
     bool updating_ = false;
 };

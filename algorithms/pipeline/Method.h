@@ -1,6 +1,7 @@
 #pragma once
-// A contour method: its parameters and its ordered phases (DESIGN.md, phase
-// model). The GUI and the CLI step every method the same way through Runner.
+// A contour method: its parameters, grouped by phase, its presets and its
+// ordered phases. The GUI and the CLI step every method the same way through
+// Runner.
 #include "camera/Camera.h"
 #include "pipeline/Parameters.h"
 #include "pipeline/Snapshot.h"
@@ -59,11 +60,27 @@ struct Method {
     std::string description;
     std::vector<ParameterSpec> parameters;
     std::vector<Phase> phases;
+    // The first is "default" (the schema's defaults).
+    std::vector<ParameterPreset> presets;
+
+    // Appends a phase. The parameters declared before it without a group
+    // join the group named after it, so a parameter's group is the phase
+    // whose declaration follows its own. Throws std::logic_error when
+    // phases were appended to `phases` directly while ungrouped parameters
+    // wait: their group would be wrong.
+    void addPhase(Phase phase);
+    // The parameter groups in the order of the parameters (phase order).
+    std::vector<std::string> parameterGroups() const;
+    // The preset called `presetName`, or null.
+    const ParameterPreset* preset(const std::string& presetName) const;
 
     const ParameterSpec* parameter(const std::string& parameterName) const;
     // Index in `phases` of the phase called `phaseName`, or -1. Phases are
     // found by name: their indices change when phases are inserted.
     int phaseIndex(const std::string& phaseName) const;
+
+private:
+    size_t phasesAdded_ = 0; // phases.size() after the last addPhase
 };
 
 } // namespace contour

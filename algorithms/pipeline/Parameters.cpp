@@ -16,6 +16,17 @@ ParameterSet ParameterSet::defaults(const std::vector<ParameterSpec>& schema) {
     return set;
 }
 
+ParameterPreset defaultPreset() {
+    return {"default", "The defaults of every parameter.", {}};
+}
+
+ParameterSet presetValues(const std::vector<ParameterSpec>& schema, const ParameterPreset& preset) {
+    ParameterSet set = ParameterSet::defaults(schema);
+    for (const auto& [name, value] : preset.values)
+        set.set(name, value);
+    return set;
+}
+
 const ParameterValue& ParameterSet::value(const std::string& name) const {
     const auto it = values_.find(name);
     if (it == values_.end())

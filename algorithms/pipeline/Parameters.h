@@ -1,6 +1,8 @@
 #pragma once
 // A method's parameter schema and the values chosen for it. The GUI form, the
 // CLI flags and the JSON report are all generated from the schema.
+// Parameters are grouped by the phase that reads them (Method::addPhase), and
+// a method names presets: complete value sets such as "default" and "paper".
 #include <map>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
@@ -22,7 +24,23 @@ struct ParameterSpec {
     double minimum = 0.0; // Int and Double only
     double maximum = 0.0;
     std::vector<std::string> choices; // Choice only
+    // The group the GUI form and the CLI list it under. Empty in a
+    // declaration: Method::addPhase gives it the name of the phase declared
+    // after it. Set only for parameters read by more than one phase
+    // (method-wide ones such as "surface") or by no phase of their own.
+    std::string group{};
 };
+
+// A named set of values for a method's schema: the schema's defaults with
+// `values` replacing some of them.
+struct ParameterPreset {
+    std::string name; // also the CLI's --preset value: "default", "paper"
+    std::string description;
+    std::map<std::string, ParameterValue> values;
+};
+
+// The preset of the schema's defaults, which every method offers.
+ParameterPreset defaultPreset();
 
 class ParameterSet {
 public:
@@ -55,6 +73,9 @@ ParameterValue parseParameter(const ParameterSpec& spec, const std::string& text
 // Checks every value against the schema; returns one message per problem.
 std::vector<std::string> validateParameters(const std::vector<ParameterSpec>& schema,
                                             const ParameterSet& values);
+
+// The schema's defaults with the preset's values applied.
+ParameterSet presetValues(const std::vector<ParameterSpec>& schema, const ParameterPreset& preset);
 
 std::string toString(const ParameterValue& value);
 

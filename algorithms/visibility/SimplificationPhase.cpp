@@ -92,12 +92,12 @@ void addSimplificationPhase(Method& m) {
                             0.0,
                             1000.0,
                             {}});
-    m.phases.push_back({"simplification",
-                        "Topological simplification of the view graph (Bénard 2014 §9): "
-                        "candidate runs of visible chains below the threshold are hidden when "
-                        "they join a junction to a dead-end, two dead-ends, a node to itself, or "
-                        "are overlapped in 2D by another chain; repeated to a fixed point.",
-                        runSimplification, checkSimplification});
+    m.addPhase({"simplification",
+                "Topological simplification of the view graph (Bénard 2014 §9): "
+                "candidate runs of visible chains below the threshold are hidden when "
+                "they join a junction to a dead-end, two dead-ends, a node to itself, or "
+                "are overlapped in 2D by another chain; repeated to a fixed point.",
+                runSimplification, checkSimplification});
 }
 
 } // namespace contour

@@ -422,10 +422,10 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
         m.parameters.push_back(
             {kNearFaceEpsilon,
              "Near-face epsilon",
-             "Bénard 2014 footnote 3: the near-face test of a contour edge is unreliable when "
-             "|v · (w1 − w2)| is below this. Default: the paper's value as extracted, 1, which "
-             "looks suspiciously large (|v · (w1 − w2)| ≤ 2, so most tests are flagged; it may "
-             "have lost an exponent, notes §3.2): treat it as tunable.",
+             "Bénard 2014 footnote 3: the near-face test of a contour edge is unreliable "
+             "when |v · (w1 − w2)| is below this. Default 1, the paper's value as printed; "
+             "since |v · (w1 − w2)| ≤ 2, most tests are flagged and it may have lost an "
+             "exponent: treat it as tunable.",
              ParameterType::Double,
              1.0,
              0.0,
@@ -455,11 +455,10 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
         m.parameters.push_back(
             {kIgnoredFaces,
              "Ignored faces",
-             "Tutorial §6.2.4: the faces a ray test ignores, to avoid the contour's own surface "
-             "occluding it: face (the contour's face only), edge-neighbours (and the faces "
-             "sharing an edge with it) or vertex-neighbours (every face sharing a vertex with "
-             "it). Wider rings reduce self-occlusion and widen halos. Default vertex-neighbours: "
-             "the only one that keeps a sphere's outline visible.",
+             "Tutorial §6.2.4: the faces a ray test ignores so that the contour's own "
+             "surface does not occlude it: face, edge-neighbours or vertex-neighbours (every "
+             "face sharing a vertex with it). Wider rings reduce self-occlusion and widen "
+             "halos; vertex-neighbours keeps a sphere's outline visible.",
              ParameterType::Choice,
              std::string(toString(IgnoredFaces::VertexNeighbours)),
              0,
@@ -478,12 +477,11 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
               "vote and the ambiguity rules."
             : "View graph of the interpolated contours (T-junctions, Y junctions), then "
               "heuristic visibility: a vote of ray tests per chain (tutorial §6.2.4).";
-    m.phases.push_back(
-        {"visibility", description,
-         [flavor](const PhaseContext& ctx, Snapshot& s) { runVisibility(flavor, ctx, s); },
-         [flavor](const PhaseContext& ctx, const Snapshot& s) {
-             return checkVisibility(flavor, ctx, s);
-         }});
+    m.addPhase({"visibility", description,
+                [flavor](const PhaseContext& ctx, Snapshot& s) { runVisibility(flavor, ctx, s); },
+                [flavor](const PhaseContext& ctx, const Snapshot& s) {
+                    return checkVisibility(flavor, ctx, s);
+                }});
 }
 
 } // namespace contour

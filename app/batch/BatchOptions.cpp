@@ -75,6 +75,20 @@ std::string flagHelp(const ParameterFlag& flag) {
     return help + " [" + join(defaults, "; ") + "]";
 }
 
+// "--preset" help: each method's presets.
+std::string presetHelp() {
+    std::string help = "Start from a preset of the method's parameters (parameter flags "
+                       "override it; with --session it replaces the session's parameters):";
+    for (const Method& m : contourMethods()) {
+        std::vector<std::string> names;
+        for (const ParameterPreset& p : m.presets)
+            names.push_back(p.name);
+        help += " " + m.name + ": " + join(names, ", ") + ";";
+    }
+    help.back() = '.';
+    return help + " --list-methods describes them. Default: default.";
+}
+
 std::vector<std::string> methodNames() {
     std::vector<std::string> names;
     for (const Method& m : contourMethods())
@@ -163,6 +177,8 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
                            " (planned, not implemented yet: " + join(plannedNames(), ", ") + ").")
             ->type_name("NAME")
             ->capture_default_str();
+    CLI::Option* presetOption =
+        app.add_option("--preset", o.preset, presetHelp())->type_name("NAME");
     app.add_option("--phase", phases,
                    "Stop after N phases (0 = the input only). Default: run every phase.")
         ->type_name("N");
@@ -195,7 +211,7 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
             ->type_name("H")
             ->group(cameraGroup);
     app.add_flag("--views26", o.views26,
-                 "Run the 26 views of the protocol (DESIGN.md); outputs get a _viewNN suffix "
+                 "Run the 26 views of the test protocol; outputs get a _viewNN suffix "
                  "(00-25) before their extension, the JSON report holds all 26 views.")
         ->group(cameraGroup);
     CLI::Option* widthOption = app.add_option("--width", width, "Viewport width in pixels.")
@@ -238,8 +254,9 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         ->type_name("FILE")
         ->group(outputGroup);
 
-    // One flag per parameter of every registered method (DESIGN.md: the CLI
-    // flags are generated from the schema).
+    // One flag per parameter of every registered method (the CLI flags are
+    // generated from the schema), listed under the group of the first method
+    // that declares it.
     std::map<std::string, ParameterFlag> flags;
     std::vector<std::string> flagOrder;
     for (const Method& method : contourMethods())
@@ -255,7 +272,7 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         ParameterFlag& flag = flags.at(name);
         flag.option = app.add_option("--" + name, flag.value, flagHelp(flag))
                           ->type_name(typeName(*flag.spec))
-                          ->group("Method parameters");
+                          ->group("Parameters: " + flag.spec->group);
     }
 
     try {
@@ -299,6 +316,16 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         if (app.count("--phase") == 0)
             o.phases = sessionPhaseTarget(session, *o.method, &o.sessionWarnings);
     }
+    const ParameterPreset* preset = o.method->preset(o.preset);
+    if (!preset) {
+        std::vector<std::string> names;
+        for (const ParameterPreset& p : o.method->presets)
+            names.push_back(p.name);
+        throw UsageError("--preset: method " + o.method->name + " has no preset \"" + o.preset +
+                         "\"; its presets: " + join(names, ", "));
+    }
+    if (presetOption->count() > 0 || !o.sessionCamera)
+        o.parameters = presetValues(o.method->parameters, *preset);
     for (const std::string& name : flagOrder) {
         const ParameterFlag& flag = flags.at(name);
         if (flag.option->count() == 0)

@@ -31,6 +31,9 @@ struct BatchOptions {
     bool listMethods = false;
     std::string meshPath;
     const Method* method = nullptr;
+    // --preset: the method's preset the parameters start from ("default"
+    // unless given); parameter flags override it.
+    std::string preset = "default";
     ParameterSet parameters;
     std::string cameraFile;
     CameraOverrides camera;

@@ -56,16 +56,31 @@ void printMethodList(std::ostream& out) {
             out << "    " << i + 1 << ". " << m.phases[i].name << ": " << m.phases[i].description
                 << "\n";
         out << "  parameters:" << (m.parameters.empty() ? " none" : "") << "\n";
-        for (const ParameterSpec& p : m.parameters) {
-            out << "    --" << p.name << " (" << typeText(p.type);
-            if (p.type == ParameterType::Choice) {
-                out << ":";
-                for (size_t i = 0; i < p.choices.size(); ++i)
-                    out << (i ? "|" : " ") << p.choices[i];
-            } else if (p.type != ParameterType::Bool) {
-                out << " in [" << number(p.minimum) << ", " << number(p.maximum) << "]";
+        for (const std::string& group : m.parameterGroups()) {
+            out << "    [" << group << "]\n";
+            for (const ParameterSpec& p : m.parameters) {
+                if (p.group != group)
+                    continue;
+                out << "    --" << p.name << " (" << typeText(p.type);
+                if (p.type == ParameterType::Choice) {
+                    out << ":";
+                    for (size_t i = 0; i < p.choices.size(); ++i)
+                        out << (i ? "|" : " ") << p.choices[i];
+                } else if (p.type != ParameterType::Bool) {
+                    out << " in [" << number(p.minimum) << ", " << number(p.maximum) << "]";
+                }
+                out << ", default " << toString(p.defaultValue) << ")\n      " << p.help << "\n";
             }
-            out << ", default " << toString(p.defaultValue) << ")\n      " << p.help << "\n";
+        }
+        out << "  presets (--preset):\n";
+        for (const ParameterPreset& preset : m.presets) {
+            out << "    " << preset.name << ": " << preset.description << "\n";
+            if (!preset.values.empty()) {
+                out << "     ";
+                for (const auto& [name, value] : preset.values)
+                    out << " " << name << "=" << toString(value);
+                out << "\n";
+            }
         }
         out << "\n";
     }

@@ -205,9 +205,9 @@ std::vector<ParameterSpec> surfaceParameters() {
         {"surface",
          "Smooth surface",
          "The surface the contours are computed on: none (the triangulated cage), the "
-         "Catmull-Clark or Loop limit surface (OpenSubdiv), or van Overveld & Wyvill's "
-         "vertex-normal patches, tessellated uniformly with exact limit positions and normals "
-         "(Hertzmann & Zorin 2000). auto: Catmull-Clark, or Loop for an all-triangle cage.",
+         "Catmull-Clark or Loop limit surface (OpenSubdiv) or vertex-normal patches, "
+         "tessellated uniformly with exact limit positions and normals (Hertzmann & Zorin "
+         "2000). auto: Catmull-Clark, or Loop for an all-triangle cage.",
          ParameterType::Choice,
          std::string(kNone),
          0,

@@ -13,6 +13,13 @@
 
 namespace contour {
 
+namespace {
+
+// The parameters every phase reads: the surface and its tolerances.
+constexpr const char* kSurfaceGroup = "surface";
+
+} // namespace
+
 Method makeConsistentContourMethod() {
     using namespace consistent;
     Method m;
@@ -22,11 +29,8 @@ Method makeConsistentContourMethod() {
         "A per-view triangulation of the smooth surface whose contour generator is meant to be "
         "topologically equivalent to the smooth one (Bénard, Hertzmann & Kass 2014), built by "
         "the sub-phases of §6 in the paper's order, then the contour generator (edges between "
-        "F-VBO and B-VBO faces) chained. Inconsistent faces can remain (0-0.005 % of the "
-        "faces per view on average on ConTesse's meshes, at most 0.015 % on any of their 26 "
-        "views; 0 on a sphere, ellipsoid, torus and bumpy torus); every phase counts them and "
-        "the Overlays toolbar outlines them. Against a dense ground truth, contour loops match "
-        "in 36 of 36 views on every test shape and cusp counts in 34-36.";
+        "F-VBO and B-VBO faces) chained (§8). Inconsistent faces can remain: every phase "
+        "counts them and the Overlays toolbar outlines them.";
     m.parameters = {
         {"surface",
          "Smooth surface",
@@ -38,46 +42,41 @@ Method makeConsistentContourMethod() {
          0,
          0,
          {"auto", toString(SurfaceKind::CatmullClark), toString(SurfaceKind::Loop),
-          toString(SurfaceKind::VertexNormalPatches)}},
+          toString(SurfaceKind::VertexNormalPatches)},
+         kSurfaceGroup},
         {"chart-tolerance",
          "Chart tolerance",
-         "How close (in domain parameters) a preimage must be to a domain edge to also belong "
-         "to the neighbouring face, and how far outside a face an interpolated preimage may "
-         "land (appendix B; not in the paper).",
+         "How close (in domain parameters) a preimage must be to a domain edge to also "
+         "belong to the neighbouring face, and how far outside a face an interpolated "
+         "preimage may land (appendix B; the paper gives no value).",
          ParameterType::Double,
          1e-9,
          0.0,
          1e-3,
-         {}},
+         {},
+         kSurfaceGroup},
         {"chart-vertex-rings",
          "Charts around regular corners",
-         "Appendix B interpolates in the chart of a domain vertex's one-ring. Off: only a "
-         "domain face and its edge neighbours share a chart. On: also two faces meeting at a "
-         "regular corner (four quads), so moves next to domain vertices are no longer "
-         "cancelled for want of a chart; contour insertion still snaps only within edge charts "
-         "(snap-across-corners), so the contour matches the dense ground truth exactly as with "
-         "the option off. Off by default: over 26 views (patch-search off) it takes the torus "
-         "(resolution 12) from 12 inconsistent faces to 0, the bumpy torus from 14 to 12, "
-         "spot_control from 73 to 68 and bob_controlmesh from 72 to 70 (torus 16: 46, "
-         "unchanged), but 6 of those 130 views end 1 face worse, and over 8 views bigguy, "
-         "spot_quad and fertility drop (117 -> 103, 31 -> 28, 65 -> 63) while bob_quad and "
-         "killeroo rise (67 -> 72, 331 -> 333): the mesh reaching the final normal wiggle has "
-         "fewer inconsistent faces, but the wiggle fixes fewer of them (bob_quad view 4: 33 -> "
-         "20 against 32 -> 16).",
+         "Charts for preimage interpolation (appendix B). On: a domain vertex's "
+         "one-ring, as in the paper, so two faces meeting at a regular corner share a "
+         "chart. Off (default): only a face and its edge neighbours share one; moves "
+         "that need a corner chart are cancelled.",
          ParameterType::Bool,
          false,
          0,
          0,
-         {}},
+         {},
+         kSurfaceGroup},
         {"embedding-tolerance",
          "Embedding tolerance",
-         "Post-condition pos = f(u) (notes §6.1 item 2) holds within this times the "
-         "bounding-box diagonal.",
+         "Tolerance of the post-condition pos = f(u) (§6.1), times the bounding-box "
+         "diagonal.",
          ParameterType::Double,
          1e-9,
          0.0,
          1e-2,
-         {}},
+         {},
+         kSurfaceGroup},
     };
     addInitializationPhase(m);
     addCuspDetectionPhase(m);
@@ -97,6 +96,68 @@ Method makeConsistentContourMethod() {
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);
     addSimplificationPhase(m);
+    // Bénard 2014 as written: every parameter whose help says "not in the
+    // paper" at its off value, and the paper's numbers where it gives one;
+    // the parameters it gives no value for keep their defaults.
+    m.presets = {
+        defaultPreset(),
+        {"paper",
+         "Bénard 2014 as written: every extension off, the paper's values where it gives one "
+         "(§6.1-§6.4, appendices B and C, footnote 3), the defaults elsewhere.",
+         {
+             // Appendix B: charts of a domain vertex's one-ring; appendix C
+             // allows any shift that keeps interpolation possible.
+             {"chart-vertex-rings", true},
+             {"snap-across-corners", true},
+             // §6.1: one pass, 10 samples per edge, the first crossing.
+             {"crossing-samples", 10},
+             {"crossing-search-rounds", 1},
+             {"crossing-split-deepest", false},
+             // §6.2 d: the corner test, area 1e-20.
+             {"cusp-area-threshold", 1e-20},
+             {"cusp-search-subdivision", 0},
+             {"cusp-contour-samples", 0},
+             {"cusp-refinement", false},
+             // §6.2 e: snap within 20 % of the edge length.
+             {"snap-fraction", 0.2},
+             // §6.3 g-h.
+             {"radial-joint-min-barycentric", 0.0},
+             {"radial-keep-consistency", false},
+             {"radial-cusp-inside-pixels", 0.0},
+             {"radial-cusp-pair-pixels", 0.0},
+             {"radial-cusp-opposite-edge", false},
+             {"radial-cusp-both-sides", false},
+             {"radial-fold-fallback", true},
+             {"radial-fan-sequences", false},
+             // §6.4: one-face extension, single flips, 100 wiggle samples,
+             // 10 split samples, 100 normal offsets up to the one-ring
+             // distance.
+             {"extension-cusp-push-depth", 0},
+             {"extension-cusp-push-final", false},
+             {"extension-push-every-end-final", false},
+             {"optimization-cusp-edits", true},
+             {"optimization-flip-pairs", false},
+             {"wiggle-samples", 100},
+             {"wiggle-radial-ends", false},
+             {"split-samples", 10},
+             {"split-wiggle-samples", 0},
+             {"vertex-removal", false},
+             {"patch-search", false},
+             {"normal-wiggle-samples", 100},
+             {"normal-wiggle-max-offset", 1.0},
+             {"normal-wiggle-fine-offsets", 0},
+             {"normal-wiggle-pair-offsets", 0},
+             {"normal-wiggle-ring-pairs", false},
+             {"cusp-end-retriangulation-faces", 0},
+             {"contour-refinement-pixels", 0.0},
+             {"cusp-retry", false},
+             // §8: boundaries and surface intersections are curves;
+             // footnote 3's near-face threshold.
+             {"include-boundaries", true},
+             {"surface-intersections", true},
+             {"near-face-epsilon", 1.0},
+         }},
+    };
     return m;
 }
 

@@ -203,7 +203,10 @@ Method makeInterpolatedContourMethod() {
     m.description = "Zero set of g = (c - p) · n interpolated linearly from vertex normals "
                     "(tutorial §6.2, Hertzmann & Zorin 2000), on the triangulated cage or on a "
                     "tessellation of its smooth surface with exact limit normals.";
-    m.parameters = {
+    m.presets = {defaultPreset()};
+    // Each phase's parameters are declared before it (Method::addPhase).
+    m.parameters = surfaceParameters();
+    m.parameters.push_back(
         {"normal-weighting",
          "Vertex normal weights",
          "How face normals are averaged into vertex normals: area (tutorial §6.2.1), angle, or "
@@ -212,32 +215,27 @@ Method makeInterpolatedContourMethod() {
          std::string("area"),
          0,
          0,
-         {"area", "angle", "max"}},
-        {"include-boundaries",
-         "Include boundaries",
-         "Also extract boundary edges as curves (tutorial §3.2).",
-         ParameterType::Bool,
-         true,
-         0,
-         0,
-         {}},
-    };
-    // The surface comes first, as its phase does.
-    const std::vector<ParameterSpec> surface = surfaceParameters();
-    m.parameters.insert(m.parameters.begin(), surface.begin(), surface.end());
-    m.phases = {
-        makeSurfacePhase(NoneSurfaceNormals::WeightedAverage),
-        {"facing", "Vertex normals, g = (c - p) · n at every vertex, and each face's facing.",
-         computeVertexFacing, checkVertexFacing},
-        {"extraction",
-         "Zero crossings of g on edges (t = g_i / (g_i - g_j)); one segment per face "
-         "with two crossings.",
-         extractZeroCrossings, checkZeroCrossings},
-        {"chaining",
-         "Chain segments across shared edges: closed loops on closed meshes, open at "
-         "boundaries.",
-         chainSegmentsAcrossEdges, checkChains},
-    };
+         {"area", "angle", "max"}});
+    m.addPhase(makeSurfacePhase(NoneSurfaceNormals::WeightedAverage));
+    m.addPhase({"facing",
+                "Vertex normals, g = (c - p) · n at every vertex, and each face's facing.",
+                computeVertexFacing, checkVertexFacing});
+    m.addPhase({"extraction",
+                "Zero crossings of g on edges (t = g_i / (g_i - g_j)); one segment per face "
+                "with two crossings.",
+                extractZeroCrossings, checkZeroCrossings});
+    m.parameters.push_back({"include-boundaries",
+                            "Include boundaries",
+                            "Also chain the mesh's boundary edges as curves (tutorial §3.2).",
+                            ParameterType::Bool,
+                            true,
+                            0,
+                            0,
+                            {}});
+    m.addPhase({"chaining",
+                "Chain segments across shared edges: closed loops on closed meshes, open at "
+                "boundaries.",
+                chainSegmentsAcrossEdges, checkChains});
     addVisibilityPhase(m, VisibilityFlavor::Interpolated);
     addSimplificationPhase(m);
     return m;

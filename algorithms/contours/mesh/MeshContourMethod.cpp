@@ -166,38 +166,34 @@ Method makeMeshContourMethod() {
     m.description = "Edges between front-facing and back-facing triangles of the mesh "
                     "(tutorial §3.4), classified convex or concave (appendix B); the mesh is "
                     "the triangulated cage or a tessellation of its smooth surface.";
-    m.parameters = {
-        {"include-boundaries",
-         "Include boundaries",
-         "Also extract boundary edges as curves (tutorial §3.2).",
-         ParameterType::Bool,
-         true,
-         0,
-         0,
-         {}},
-        {"drop-concave",
-         "Drop concave contours",
-         "Leave concave contour edges out of the chains: they are never visible (tutorial "
-         "appendix B, theorem B.0.1).",
-         ParameterType::Bool,
-         false,
-         0,
-         0,
-         {}},
-    };
-    // The surface comes first, as its phase does.
-    const std::vector<ParameterSpec> surface = surfaceParameters();
-    m.parameters.insert(m.parameters.begin(), surface.begin(), surface.end());
-    m.phases = {
-        makeSurfacePhase(NoneSurfaceNormals::Omit),
-        makeMeshFacingPhase(),
-        {"extraction",
-         "Contour edges (front face next to back face) and boundary edges; "
-         "convex/concave classification with an exact predicate.",
-         extractContourEdges, checkContourEdges},
-        {"chaining", "Chain contour edges into polylines through vertices of degree two.",
-         chainContourEdges, checkChains},
-    };
+    m.presets = {defaultPreset()};
+    // Each phase's parameters are declared before it (Method::addPhase).
+    m.parameters = surfaceParameters();
+    m.addPhase(makeSurfacePhase(NoneSurfaceNormals::Omit));
+    m.addPhase(makeMeshFacingPhase());
+    m.parameters.push_back({"include-boundaries",
+                            "Include boundaries",
+                            "Also extract the mesh's boundary edges as curves (tutorial §3.2).",
+                            ParameterType::Bool,
+                            true,
+                            0,
+                            0,
+                            {}});
+    m.addPhase({"extraction",
+                "Contour edges (front face next to back face) and boundary edges; "
+                "convex/concave classification with an exact predicate.",
+                extractContourEdges, checkContourEdges});
+    m.parameters.push_back({"drop-concave",
+                            "Drop concave contours",
+                            "Leave concave contour edges out of the chains: they are never "
+                            "visible (tutorial appendix B, theorem B.0.1).",
+                            ParameterType::Bool,
+                            false,
+                            0,
+                            0,
+                            {}});
+    m.addPhase({"chaining", "Chain contour edges into polylines through vertices of degree two.",
+                chainContourEdges, checkChains});
     addVisibilityPhase(m, VisibilityFlavor::Mesh);
     addSimplificationPhase(m);
     return m;

@@ -181,24 +181,26 @@ void addContourRefinementPhase(Method& m) {
     m.parameters.push_back(
         {"contour-refinement-pixels",
          "Contour refinement: pixels",
-         "Not in the paper: a contour edge whose chord passes farther than this many pixels "
-         "from the contour point beside its middle (a root of g found towards the opposite "
-         "corner) is split there, when the four new faces are no less consistent than the two "
-         "old ones and nothing folds. 0: off.",
+         "Not in the paper: a contour edge whose chord passes farther than this many "
+         "pixels from the contour beside its middle is split at a root of g there (as "
+         "§6.2 e splits FB edges), when the new faces are no less consistent and nothing "
+         "folds. 0: off.",
          ParameterType::Double,
          0.5,
          0.0,
          1000.0,
          {}});
-    m.parameters.push_back({"contour-refinement-depth",
-                            "Contour refinement: depth",
-                            "How many times a contour edge may be halved by contour refinement.",
-                            ParameterType::Int,
-                            3,
-                            0,
-                            20,
-                            {}});
-    m.phases.push_back(
+    m.parameters.push_back(
+        {"contour-refinement-depth",
+         "Contour refinement: depth",
+         "With contour-refinement-pixels above 0 (not in the paper): how many times a "
+         "contour edge may be halved.",
+         ParameterType::Int,
+         3,
+         0,
+         20,
+         {}});
+    m.addPhase(
         {"contour-refinement",
          "Not in the paper: contour edges that stray more than contour-refinement-pixels from "
          "the smooth contour are split at a root of g beside their middle (as §6.2 e splits an "

@@ -29,55 +29,58 @@ void addCuspRefinementPhase(Method& m) {
     m.parameters.push_back(
         {"cusp-refinement",
          "Cusp refinement",
-         "Not in the paper: before contour insertion, the edges of the faces near every cusp "
-         "edge (§6.2 d) are halved at their parameter-space midpoints (new vertices on the "
-         "limit surface), so the cusp's wedge has more, smaller triangles for the contour, the "
-         "radial edges and the moves of §6.4. Off by default: around every cusp it makes more "
-         "views worse than better (26 views, rings 1: 75 worse, 28 better over the 7 meshes); "
-         "cusp-retry uses the same refinement around the cusps of the faces left inconsistent.",
+         "Not in the paper: before contour insertion (§6.2 e), the edges of the faces "
+         "near every cusp edge are halved at their parameter-space midpoints, giving the "
+         "cusp's wedge smaller triangles. cusp-retry uses the same refinement around "
+         "cusps at faces left inconsistent.",
          ParameterType::Bool,
          false,
          0,
          0,
          {}});
-    m.parameters.push_back({"cusp-refinement-rings",
-                            "Cusp refinement: rings",
-                            "The faces refined around a cusp edge: its two faces and those "
-                            "within this many face rings of its ends (1: every face at either "
-                            "end).",
-                            ParameterType::Int,
-                            1,
-                            0,
-                            8,
-                            {}});
-    m.parameters.push_back({"cusp-refinement-pixels",
-                            "Cusp refinement: pixels",
-                            "Only faces with a corner within this many pixels of the cusp are "
-                            "refined (0: no limit).",
-                            ParameterType::Double,
-                            0.0,
-                            0.0,
-                            1000.0,
-                            {}});
-    m.parameters.push_back({"cusp-refinement-levels",
-                            "Cusp refinement: levels",
-                            "How many times the refinement around a cusp is repeated (each "
-                            "time on the finer mesh, so the region shrinks with the faces).",
-                            ParameterType::Int,
-                            2,
-                            1,
-                            6,
-                            {}});
-    m.parameters.push_back({"cusp-refinement-cusp-edges",
-                            "Cusp refinement: halve cusp edges",
-                            "Also halve the cusp edges themselves; the half that still changes "
-                            "sign (which holds the cusp) keeps the cusp-edge tag.",
-                            ParameterType::Bool,
-                            true,
-                            0,
-                            0,
-                            {}});
-    m.phases.push_back(
+    m.parameters.push_back(
+        {"cusp-refinement-rings",
+         "Cusp refinement: rings",
+         "With cusp-refinement or cusp-retry (not in the paper): the faces refined "
+         "around a cusp edge are its two faces and those within this many face rings of "
+         "its ends (1: every face at either end).",
+         ParameterType::Int,
+         1,
+         0,
+         8,
+         {}});
+    m.parameters.push_back(
+        {"cusp-refinement-pixels",
+         "Cusp refinement: pixels",
+         "With cusp-refinement or cusp-retry (not in the paper): only faces with a "
+         "corner within this many pixels of the cusp are refined (0: no limit).",
+         ParameterType::Double,
+         0.0,
+         0.0,
+         1000.0,
+         {}});
+    m.parameters.push_back(
+        {"cusp-refinement-levels",
+         "Cusp refinement: levels",
+         "With cusp-refinement or cusp-retry (not in the paper): how many times the "
+         "refinement around a cusp is repeated, each time on the finer mesh, so the "
+         "region shrinks with the faces.",
+         ParameterType::Int,
+         2,
+         1,
+         6,
+         {}});
+    m.parameters.push_back(
+        {"cusp-refinement-cusp-edges",
+         "Cusp refinement: halve cusp edges",
+         "With cusp-refinement or cusp-retry (not in the paper): also halve the cusp "
+         "edges themselves; the half that still changes sign keeps the cusp-edge tag.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
+    m.addPhase(
         {"cusp-refinement",
          "Not in the paper: with cusp-refinement, the edges of the faces within "
          "cusp-refinement-rings face rings (and cusp-refinement-pixels) of every cusp edge are "

@@ -210,54 +210,55 @@ std::vector<InvariantCheck> checkCuspRetry(const PhaseContext& ctx, const Snapsh
     return optimizationChecks(ctx, s, false);
 }
 
+// The retry's parameters keep their own group whether the retry is declared
+// as a phase or not.
+constexpr const char* kCuspRetryGroup = "cusp-retry";
+
 } // namespace
 
 void addCuspRetryPhase(Method& m) {
     m.parameters.push_back(
         {"cusp-retry",
          "Cusp retry",
-         "Not in the paper: when faces stay inconsistent next to a cusp (a corner is the cusp "
-         "or joined to it by an edge), the method runs again from the input with the faces "
-         "around those cusps refined before contour insertion (the cusp-refinement-* "
-         "settings), and keeps that mesh only when it has strictly fewer inconsistent faces. "
-         "Measured alone on session 10's first tree (26 views, 7 meshes): 54 views better, "
-         "none worse (spot_control 10 -> 1, bigguy 49 -> 26, killeroo 163 -> 112; bumpy torus "
-         "5 -> 3), at up to twice the time of a view with such faces.",
+         "Not in the paper: when faces stay inconsistent next to a cusp, the method runs "
+         "again from the input with the faces around those cusps refined before contour "
+         "insertion (cusp-refinement-*), and keeps that mesh only when it has fewer "
+         "inconsistent faces.",
          ParameterType::Bool,
          true,
          0,
          0,
-         {}});
+         {},
+         kCuspRetryGroup});
     m.parameters.push_back(
         {"cusp-retry-variants",
          "Cusp retry: every variant",
-         "After the retry with the cusp-refinement-* values set, retry with every other "
-         "cusp-refinement-rings from 0 and cusp-refinement-levels from 1 up to those values "
-         "(fewest levels, then rings, first; none once a run has no inconsistent face) and "
-         "keep the run with the fewest; off: the values set only. At session 10's defaults, "
-         "26 views, off -> on: spot_control 1 -> 0, bigguy 23 -> 16, bob_quad 10 -> 8, "
-         "fertility 11 -> 9, killeroo 91 -> 68, bumpy torus 2 -> 0 (view 21), "
-         "no view worse; killeroo_small 2.1 -> 4.4 s per view (limit 11.3), bigguy 0.56 -> "
-         "1.05 (limit 1.75) on 2 cores (the variants run in parallel waves).",
+         "With cusp-retry (not in the paper): after the retry with the cusp-refinement-* "
+         "values, also retry with every smaller cusp-refinement-rings and "
+         "cusp-refinement-levels, and keep the run with the fewest inconsistent faces. "
+         "Off: the values set only.",
          ParameterType::Bool,
          true,
          0,
          0,
-         {}});
-    m.parameters.push_back({"cusp-retry-pixels",
-                            "Cusp retry: pixels",
-                            "A cusp found by the second run's cusp detection is refined around "
-                            "when it lies within this many pixels of a cusp at an inconsistent "
-                            "face of the first run.",
-                            ParameterType::Double,
-                            2.0,
-                            0.0,
-                            1000.0,
-                            {}});
+         {},
+         kCuspRetryGroup});
+    m.parameters.push_back(
+        {"cusp-retry-pixels",
+         "Cusp retry: pixels",
+         "With cusp-retry (not in the paper): a cusp found by the second run's cusp "
+         "detection is refined around when it lies within this many pixels of a cusp at "
+         "an inconsistent face of the first run.",
+         ParameterType::Double,
+         2.0,
+         0.0,
+         1000.0,
+         {},
+         kCuspRetryGroup});
     // The phases so far (initialization to the last one before this),
     // rerun by the retry.
     const std::vector<Phase> phases = m.phases;
-    m.phases.push_back(
+    m.addPhase(
         {"cusp-retry",
          "Not in the paper: with cusp-retry, the method so far runs again with the mesh "
          "refined around the cusps next to the faces left inconsistent, and that mesh replaces "

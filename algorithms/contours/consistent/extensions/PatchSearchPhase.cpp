@@ -1095,80 +1095,63 @@ void addPatchSearchPhase(Method& m) {
     m.parameters.push_back(
         {"patch-search",
          "Patch search: on",
-         "Compound moves around each inconsistent face (not in the paper; extends §6.4 past "
-         "the fixed point of its one-edit moves): a new vertex, or a vertex of the face moved, "
-         "anywhere in a small patch in parameter space, with the patch re-triangulated around "
-         "it (the split or wiggle and its flips as one move), accepted when the patch has "
-         "strictly fewer inconsistent faces. Over 26 views, final inconsistent faces off -> "
-         "on: spot_control 73 -> 41, bob_controlmesh 72 -> 26, bigguy 354 -> 207, "
-         "spot_quadrangulated 97 -> 42, bob_quad 185 -> 87, fertility 201 -> 92, killeroo "
-         "1257 -> 813, bumpy torus 14 -> 11, torus 12 -> 12; one view (spot_control view 9) "
-         "ends one face worse after the normal wiggle. About 5-15 % of the method's time.",
+         "Not in the paper (extends §6.4 past the fixed point of its one-edit moves): a "
+         "new or moved vertex anywhere in a small patch around an inconsistent face, the "
+         "patch re-triangulated around it, kept when the patch has strictly fewer "
+         "inconsistent faces.",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.parameters.push_back({"patch-rows",
-                            "Patch search: lattice rows",
-                            "Samples of the free vertex: the lattice of step 1/rows on every "
-                            "face of the patch (not in the paper; extends §6.4's regular "
-                            "sampling). Cost grows with rows².",
-                            ParameterType::Int,
-                            6,
-                            1,
-                            64,
-                            {}});
-    m.parameters.push_back({"patch-max-corners",
-                            "Patch search: largest patch",
-                            "Patches whose boundary has more corners are skipped (not in the "
-                            "paper; extends §6.4; the re-triangulation is cubic in it). Over "
-                            "26 views, 12 -> 16 takes bob_controlmesh from 47 to 26 final "
-                            "inconsistent faces and spot_control from 48 to 41; 20 adds one.",
-                            ParameterType::Int,
-                            16,
-                            4,
-                            32,
-                            {}});
-    m.parameters.push_back({"patch-relocate",
-                            "Patch search: relocate vertices",
-                            "Also move a vertex of the face over its whole star with its star "
-                            "re-triangulated (a wiggle and flips as one move; not in the paper; "
-                            "extends §6.4). Off: new vertices only.",
-                            ParameterType::Bool,
-                            true,
-                            0,
-                            0,
-                            {}});
-    m.parameters.push_back({"patch-radial-ends",
-                            "Patch search: relocate radial ends",
-                            "Also relocate the far end r of a radial edge p-r over its star, "
-                            "kept on p's radial plane (|h_p(r)| within radial-root-tolerance) "
-                            "and joined to p, with the star re-triangulated (not in the paper; "
-                            "extends §6.4 and §6.3 g). Over 26 views, final inconsistent faces "
-                            "off -> on: torus 12 -> 0, bob_controlmesh 26 -> 21, bigguy 207 -> "
-                            "196, bob_quad 87 -> 80, fertility 92 -> 80, spot_quadrangulated 42 "
-                            "-> 37, killeroo 824 -> 735, spot_control 39 -> 37. On by default "
-                            "although two views end one face worse after the normal wiggle "
-                            "(bigguy view 22: 4 -> 5, 0.025 %; killeroo view 7: 28 -> 29) while "
-                            "the patch search itself leaves fewer there: it is the only move "
-                            "that takes the torus to 0.",
-                            ParameterType::Bool,
-                            true,
-                            0,
-                            0,
-                            {}});
+    m.parameters.push_back(
+        {"patch-rows",
+         "Patch search: lattice rows",
+         "With patch-search (not in the paper): the free vertex is sampled on the "
+         "lattice of step 1/rows on every face of the patch. Cost grows with rows².",
+         ParameterType::Int,
+         6,
+         1,
+         64,
+         {}});
+    m.parameters.push_back(
+        {"patch-max-corners",
+         "Patch search: largest patch",
+         "With patch-search (not in the paper): patches whose boundary has more corners "
+         "are skipped (the re-triangulation is cubic in it).",
+         ParameterType::Int,
+         16,
+         4,
+         32,
+         {}});
+    m.parameters.push_back(
+        {"patch-relocate",
+         "Patch search: relocate vertices",
+         "With patch-search (not in the paper): also move a vertex of the face over its "
+         "whole star, the star re-triangulated (a wiggle and flips as one move). Off: "
+         "new vertices only.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
+    m.parameters.push_back(
+        {"patch-radial-ends",
+         "Patch search: relocate radial ends",
+         "With patch-search (not in the paper): also relocate the far end r of a radial "
+         "edge p-r over its star, kept on p's radial plane (within "
+         "radial-root-tolerance) and joined to p, the star re-triangulated.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
     m.parameters.push_back(
         {"patch-contour-slide",
          "Patch search: slide C vertices",
-         "Also relocate a C vertex (not a cusp, no radial or cusp edge, exactly two CC edges) "
-         "over its star, kept on the contour (a root of g between lattice points, |g| within "
-         "half the root-tolerance) and joined to both contour neighbours, with the star "
-         "re-triangulated (not in the paper; extends the §6.4 parameter wiggle, which never "
-         "moves C vertices, with §6.2's contour roots). Tried once the other moves are at their "
-         "fixed point. Over 26 views (normal-wiggle pairs on), final inconsistent faces off -> "
-         "on: spot_control 35 -> 33, bob_control 19 -> 17, bigguy 184 -> 182, bob_quad 78 -> "
-         "77, fertility 80 -> 79, killeroo 685 -> 678, the rest unchanged, no view worse.",
+         "With patch-search (not in the paper): also slide a C vertex (no cusp, no "
+         "tagged edge, two CC edges) over its star along the contour (a root of g, §6.2 "
+         "e), joined to both contour neighbours, the star re-triangulated.",
          ParameterType::Bool,
          true,
          0,
@@ -1177,15 +1160,9 @@ void addPatchSearchPhase(Method& m) {
     m.parameters.push_back(
         {"patch-new-radial-ends",
          "Patch search: new radial ends",
-         "Also place the free vertex x (new, or a vertex of the face without tagged edges) on "
-         "the radial plane of a C vertex p of the patch's boundary that has fewer than two "
-         "radial edges (a root of h_p between lattice points, within radial-root-tolerance), "
-         "joined to p, with the patch re-triangulated; p-x becomes a radial edge (not in the "
-         "paper; the radial edge §6.3 g did not insert, added during §6.4). Tried once the "
-         "other moves are at their fixed point. Over 26 views, final inconsistent faces off -> "
-         "on: spot_control 25 -> 24, bigguy 156 -> 149 (views above 0.05 %: 3 -> 2), "
-         "spot_quadrangulated 31 -> 30, killeroo 501 -> 492, bob_control, bob_quad, "
-         "fertility and the four shapes unchanged; no view worse, no measurable time.",
+         "With patch-search (not in the paper): also put the free vertex on the radial "
+         "plane of a C vertex p of the patch boundary that has fewer than two radial "
+         "edges, joined to p as a new radial edge (the edge §6.3 g did not insert).",
          ParameterType::Bool,
          true,
          0,
@@ -1194,13 +1171,9 @@ void addPatchSearchPhase(Method& m) {
     m.parameters.push_back(
         {"patch-new-radial-cusps",
          "Patch search: new radial ends at cusps",
-         "With patch-new-radial-ends, a cusp with fewer than two radial edges may get one too "
-         "(not in the paper): x on the cusp's radial plane, joined to it, the patch (also the "
-         "grown one) re-triangulated around it, so the cusp's valence changes (Fig. 18d keeps "
-         "it 4 only until the cusp has radial edges, Fig. 18e). Over 26 views, final "
-         "inconsistent faces off -> on: bigguy 49 -> 47 (views 4: 2 -> 1, 11: 3 -> 2); "
-         "spot_control, bob_control, spot_quadrangulated, bob_quad, fertility, killeroo_small "
-         "and the four shapes unchanged; no view worse.",
+         "With patch-search and patch-new-radial-ends (not in the paper): a cusp with "
+         "fewer than two radial edges may get one too, which changes its valence (Fig. "
+         "18d keeps it 4 only until the cusp has radial edges, Fig. 18e).",
          ParameterType::Bool,
          true,
          0,
@@ -1209,40 +1182,36 @@ void addPatchSearchPhase(Method& m) {
     m.parameters.push_back(
         {"patch-new-radial-cusp-ties",
          "Patch search: a cusp's first radial edge on a tie",
-         "With patch-new-radial-cusps, a new radial end at a cusp that has no radial edge yet "
-         "is accepted when the patch keeps as many inconsistent faces as before, not only "
-         "fewer (not in the paper; a tie-break: the move adds the radial edge Fig. 18e gives "
-         "every cusp, once per such cusp, and frees the cusp's valence for the later moves). "
-         "Spot view 16: two cusps whose valence-4 fan (Fig. 18d) has one F corner, so its two "
-         "F faces cannot cover the 372 degrees the F side needs around the cusp's image, get "
-         "one radial edge each and the later moves clear the view (2 -> 0). Over 26 views, "
-         "final inconsistent faces off -> on: spot_control 10 -> 8, bigguy 47 -> 48 (view "
-         "8: 2 -> 3), the other meshes and the four shapes unchanged.",
+         "With patch-search and patch-new-radial-cusps (not in the paper): a new radial "
+         "end at a cusp without radial edges is accepted when the patch keeps as many "
+         "inconsistent faces, not only fewer (it adds the radial edge Fig. 18e gives "
+         "every cusp).",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.parameters.push_back({"patch-grow",
-                            "Patch search: grown patches",
-                            "Also try each patch grown by the faces across its open boundary "
-                            "edges (a wider choice of re-triangulations; not in the paper; "
-                            "extends §6.4).",
-                            ParameterType::Bool,
-                            true,
-                            0,
-                            0,
-                            {}});
-    m.parameters.push_back({"patch-max-sweeps",
-                            "Patch search: sweeps",
-                            "Largest number of sweeps over the inconsistent faces in the patch "
-                            "search (not in the paper; extends §6.4).",
-                            ParameterType::Int,
-                            20,
-                            1,
-                            10000,
-                            {}});
-    m.phases.push_back(
+    m.parameters.push_back(
+        {"patch-grow",
+         "Patch search: grown patches",
+         "With patch-search (not in the paper): also try each patch grown by the faces "
+         "across its open boundary edges (a wider choice of re-triangulations).",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
+         {}});
+    m.parameters.push_back(
+        {"patch-max-sweeps",
+         "Patch search: sweeps",
+         "With patch-search (not in the paper): largest number of sweeps over the "
+         "inconsistent faces.",
+         ParameterType::Int,
+         20,
+         1,
+         10000,
+         {}});
+    m.addPhase(
         {"patch-search",
          "Extension of §6.4 (not in the paper): around each inconsistent face, one free vertex "
          "(new, or a non-C vertex of the face) sampled over a small patch in parameter space, "

@@ -269,34 +269,35 @@ void addVertexRemovalPhase(Method& m) {
     m.parameters.push_back(
         {"vertex-removal",
          "Removal: on",
-         "Remove a vertex of an inconsistent face when re-triangulating its one-ring leaves "
-         "fewer inconsistent faces (an extension of §6.4 built from §6.3 (h)'s vertex "
-         "deletion; not in the paper).",
+         "Not in the paper (an extension of §6.4 built from the vertex deletion of §6.3 "
+         "h): a vertex of an inconsistent face is removed when re-triangulating its "
+         "one-ring leaves fewer inconsistent faces.",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.parameters.push_back({"removal-max-valence",
-                            "Removal: largest valence",
-                            "Vertices with more neighbours than this are not removed (the "
-                            "re-triangulation is cubic in the valence; 16 removes 3 more faces "
-                            "than 10 over spot + bob's 26 views).",
-                            ParameterType::Int,
-                            16,
-                            4,
-                            64,
-                            {}});
-    m.parameters.push_back({"removal-max-sweeps",
-                            "Removal: sweeps",
-                            "Largest number of sweeps over the inconsistent faces' vertices in "
-                            "vertex removal.",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            10000,
-                            {}});
-    m.phases.push_back(
+    m.parameters.push_back(
+        {"removal-max-valence",
+         "Removal: largest valence",
+         "With vertex-removal (not in the paper): vertices with more neighbours than "
+         "this are not removed (the re-triangulation is cubic in the valence).",
+         ParameterType::Int,
+         16,
+         4,
+         64,
+         {}});
+    m.parameters.push_back(
+        {"removal-max-sweeps",
+         "Removal: sweeps",
+         "With vertex-removal (not in the paper): largest number of sweeps over the "
+         "inconsistent faces' vertices.",
+         ParameterType::Int,
+         100,
+         1,
+         10000,
+         {}});
+    m.addPhase(
         {"vertex-removal",
          "Extension of §6.4 (from §6.3 h's vertex deletion): a non-contour vertex of an "
          "inconsistent face, on no radial or cusp edge, is removed and its one-ring "

@@ -79,10 +79,10 @@ void addChainingPhase(Method& m) {
                             0,
                             0,
                             {}});
-    m.phases.push_back({"chaining",
-                        "The contour generator (edges between an F-VBO and a B-VBO face) "
-                        "chained into polylines, and the boundaries.",
-                        runChaining, checkChaining});
+    m.addPhase({"chaining",
+                "The contour generator (edges between an F-VBO and a B-VBO face) "
+                "chained into polylines, and the boundaries.",
+                runChaining, checkChaining});
 }
 
 } // namespace contour::consistent

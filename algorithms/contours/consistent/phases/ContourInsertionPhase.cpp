@@ -154,29 +154,29 @@ void addContourInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"root-tolerance",
          "Root tolerance",
-         "Bisection on FB edges stops when |g| is below this times the bounding-box diagonal "
-         "(§6.2 e; the paper does not give its tolerance). Also the bound checked at C "
-         "vertices.",
+         "Bisection on FB edges (§6.2 e) stops when |g| is below this times the "
+         "bounding-box diagonal; also the bound checked at C vertices. The paper gives "
+         "no tolerance.",
          ParameterType::Double,
          1e-10,
          1e-16,
          1e-2,
          {}});
-    m.parameters.push_back({"root-max-iterations",
-                            "Root iterations",
-                            "Maximum bisection steps per FB edge (§6.2 e; unspecified in the "
-                            "paper).",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            1000,
-                            {}});
+    m.parameters.push_back(
+        {"root-max-iterations",
+         "Root iterations",
+         "Maximum bisection steps per FB edge (§6.2 e; the paper gives no value).",
+         ParameterType::Int,
+         100,
+         1,
+         1000,
+         {}});
     m.parameters.push_back(
         {"snap-fraction",
          "Snap fraction",
          "A root closer than this fraction of the edge length to an endpoint shifts that "
-         "endpoint onto the root when it is shiftable (appendix C) instead of inserting a "
-         "vertex (§6.2 e; paper: 0.2).",
+         "endpoint onto it when shiftable (appendix C) instead of inserting a vertex "
+         "(§6.2 e; paper: 0.2).",
          ParameterType::Double,
          0.2,
          0.0,
@@ -185,16 +185,16 @@ void addContourInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"snap-across-corners",
          "Snap across corners",
-         "With chart-vertex-rings: may the snap rule (§6.2 e) shift a vertex whose faces would "
-         "then need a regular-corner chart (appendix B)? Off: such a root is inserted by an "
-         "edge split instead, because the snapped vertex's new edges would cut across the "
-         "domain corner and the contour would stray from the true one (not in the paper).",
+         "With chart-vertex-rings: may the snap rule (§6.2 e) shift a vertex whose faces "
+         "then need a corner chart (appendix B)? On: as the paper allows. Off (default): "
+         "the root is inserted by an edge split instead, which keeps the contour closer "
+         "to the true one.",
          ParameterType::Bool,
          false,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"contour-insertion",
          "§6.2 e (Fig. 15d-f): bisection root of g on every FB edge; shift a shiftable endpoint "
          "within snap-fraction of the edge length onto it (appendix C), otherwise insert a C "

@@ -513,11 +513,10 @@ void addCuspDetectionPhase(Method& m) {
     m.parameters.push_back(
         {"cusp-area-threshold",
          "Cusp area threshold",
-         "The cusp search (§6.2 d) bisects a face in parameter space while g and the radial "
-         "curvature both change sign over it, and returns the centroid once the area is below "
-         "this (paper: 1e-20, in quad precision). The search uses long double coordinates "
-         "and evaluates the surface in double; it also stops at edges below 1e-13, where "
-         "double preimages no longer separate.",
+         "The cusp search (§6.2 d) bisects a face in parameter space while g and the "
+         "radial curvature both change sign over it, and returns its centroid once the "
+         "area is below this (paper: 1e-20, in quad precision; here long double, "
+         "stopping also at edges below 1e-13).",
          ParameterType::Double,
          1e-20,
          1e-26,
@@ -526,10 +525,9 @@ void addCuspDetectionPhase(Method& m) {
     m.parameters.push_back(
         {"cusp-shift-fraction",
          "Cusp shift fraction",
-         "When the split point that puts a cusp on an FB edge (§6.2 d, Fig. 16b) is closer "
-         "than this fraction of the split edge's length to one of its ends, the cusp is that "
-         "close to a face edge: that end is shifted to the split point if shiftable (appendix "
-         "C) instead of splitting (the paper gives no value).",
+         "When the split point that puts a cusp on an FB edge (§6.2 d, Fig. 16b) is "
+         "within this fraction of the split edge's length of one of its ends, that end "
+         "is shifted there if shiftable (appendix C) instead. The paper gives no value.",
          ParameterType::Double,
          0.1,
          0.0,
@@ -538,11 +536,10 @@ void addCuspDetectionPhase(Method& m) {
     m.parameters.push_back(
         {"cusp-search-subdivision",
          "Cusp search subdivision",
-         "Not in the paper (0: the paper's test of g and the radial curvature at the face's "
-         "corners). k > 0: every face over which g changes sign is split regularly into 4^k "
-         "sub-triangles in parameter space, each tested and searched on its own, so that a "
-         "cusp pair whose κr = 0 curve enters and leaves the face through one edge is not "
-         "missed.",
+         "Not in the paper (0: the paper's test of g and the radial curvature at the "
+         "face's corners, §6.2 d). k > 0: every face over which g changes sign is split "
+         "into 4^k sub-triangles in parameter space, each tested on its own, so that "
+         "cusp pairs inside one face are found.",
          ParameterType::Int,
          0,
          0,
@@ -551,24 +548,16 @@ void addCuspDetectionPhase(Method& m) {
     m.parameters.push_back(
         {"cusp-contour-samples",
          "Cusp samples along the contour",
-         "Not in the paper (0: the paper's test of g and the radial curvature at the face's "
-         "corners, §6.2 d). n > 0: in every face whose corners' labels differ, the radial "
-         "curvature is sampled ON the contour's crossing of the face (each sample the root of "
-         "g on the line from the odd corner to a point of the opposite edge, the line the cusp "
-         "edge takes, Fig. 16b): 5 samples, then halving down to 1/n of the edge next to each "
-         "local minimum of |κr|; each sign change is refined by bisection. This replaces the "
-         "corner test and cusp-search-subdivision, and finds the cusps whose κr = 0 curve "
-         "leaves the corners' κr signs unchanged or bends out of a bisected sub-triangle "
-         "(ground-truth cusp counts: spot 7 -> 31 of 36 views, bumpy torus 18 -> 35, bob 30 -> "
-         "36). On by default because the issue's validation asks for every cusp; the added "
-         "cusps cost some inconsistent faces (26 views: spot_control 33 -> 39, bigguy 182 "
-         "-> 193, bob_control 17 -> 16) and about 0.04 s per view on bob_quad.",
+         "Not in the paper (0: the corner test of §6.2 d). n > 0: the radial curvature "
+         "is sampled on the contour's crossing of every face whose corners' labels "
+         "differ, down to 1/n of the edge near minima of its magnitude; sign changes are "
+         "bisected. Replaces the corner test and cusp-search-subdivision.",
          ParameterType::Int,
          32,
          0,
          256,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"cusp-detection",
          "§6.2 d (Fig. 15d, 16b, 18b): per face, where g and the radial curvature both change "
          "sign, recursive bisection in parameter space down to cusp-area-threshold; each cusp "

@@ -179,28 +179,25 @@ void addEdgeSplitPhase(Method& m) {
     m.parameters.push_back(
         {"split-wiggle-samples",
          "Split: wiggle samples per face",
-         "Also try the split's new vertex at this many points of each of the two faces beside "
-         "the edge (a regular lattice, as the parameter wiggle's), i.e. the split followed by "
-         "a wiggle of the new vertex over its one-ring: §6.4 splits so that wiggling gets "
-         "\"more opportunities to find consistent positions\", while the wiggle runs before "
-         "the split in the paper's order. 0 (default): only the split-samples points on the "
-         "edge; 100 removes a few more faces (torus 59 -> 55, spot 209 -> 204 over 26 views) "
-         "at about 10x the phase's time.",
+         "Not in the paper: also try the split's new vertex at this many lattice points "
+         "of each of the two faces beside the edge, a split then a wiggle of the new "
+         "vertex (§6.4). 0: only the split-samples points on the edge.",
          ParameterType::Int,
          0,
          0,
          10000,
          {}});
-    m.parameters.push_back({"split-max-sweeps",
-                            "Split: sweeps",
-                            "Largest number of sweeps over the inconsistent faces in edge "
-                            "splitting (§6.4; the paper gives no stopping rule).",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            10000,
-                            {}});
-    m.phases.push_back(
+    m.parameters.push_back(
+        {"split-max-sweeps",
+         "Split: sweeps",
+         "Largest number of sweeps over the inconsistent faces in edge splitting (§6.4; "
+         "the paper gives no stopping rule).",
+         ParameterType::Int,
+         100,
+         1,
+         10000,
+         {}});
+    m.addPhase(
         {"edge-splitting",
          "§6.4 Edge Splitting: every edge of an inconsistent face sampled at split-samples "
          "points; the split that leaves the fewest inconsistent faces (strictly fewer), ties "

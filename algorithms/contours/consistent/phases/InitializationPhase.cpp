@@ -173,13 +173,10 @@ void addInitializationPhase(Method& m) {
     m.parameters.push_back(
         {"crossing-search-rounds",
          "Sign-crossing search rounds",
-         "Rounds of the sign-crossing search (§6.1). 1: the paper's single pass over the FF "
-         "and BB edges of the initial mesh. n > 1 (ours): each further round searches the FF "
-         "and BB edges the previous round's splits created (from a split vertex to the "
-         "opposite corners), which the single pass never looks at and where contour loops "
-         "were joined or lost with their cusps (spot views 2, 5, 31: ground-truth loop "
-         "agreement 31 -> 36 of 36 views), with 10 more samples at 2^-k of the edge from the "
-         "split vertex and the split at the deepest sample.",
+         "Rounds of the sign-crossing search (§6.1). 1: the paper's single pass. n > 1 "
+         "(not in the paper): each further round searches the FF and BB edges the "
+         "previous round's splits created, with finer samples near the split vertex, "
+         "splitting at the deepest sample.",
          ParameterType::Int,
          4,
          1,
@@ -188,18 +185,16 @@ void addInitializationPhase(Method& m) {
     m.parameters.push_back(
         {"crossing-split-deepest",
          "Split at the deepest crossing sample",
-         "Which sample of the sign-crossing search (§6.1) becomes the split vertex; the paper "
-         "leaves it unspecified. Off: the first sample whose label differs. On (ours): the "
-         "sample of the first run of the other label where |g| is largest, so the split vertex "
-         "lies away from the contour and its new edges seldom cross g = 0 right next to it. "
-         "Applies to the first pass; the later rounds of crossing-search-rounds always take "
-         "the deepest sample.",
+         "Which sample of the sign-crossing search (§6.1, which leaves it open) becomes "
+         "the split vertex. Off: the first sample of the other label. On (not in the "
+         "paper): the sample of that run where |g| is largest, away from the contour. "
+         "First pass only; later rounds take the deepest.",
          ParameterType::Bool,
          false,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"initialization",
          "§6.1 (Fig. 15a-c): the smooth surface's domain (Catmull-Clark: cage subdivided once) "
          "triangulated, vertices at the limit and labelled by sign(g); sign-crossing search "

@@ -396,10 +396,10 @@ void addNormalWigglePhase(Method& m) {
     m.parameters.push_back(
         {"normal-wiggle-fine-offsets",
          "Normal wiggle: fine offsets",
-         "Not in the paper (§6.4 samples 100 offsets evenly): also try this many offsets of "
-         "each sign below the even step, log-uniformly over six decades, for the small "
-         "displacements that a cusp's thin inside fan (Fig. 18e) needs. Default 48; 0: the "
-         "paper's even offsets only.",
+         "Not in the paper (§6.4 samples its offsets evenly): also try this many offsets "
+         "of each sign below the even step, log-uniformly over six decades, for the "
+         "small moves a cusp's thin inside fan (Fig. 18e) needs. 0: the even offsets "
+         "only.",
          ParameterType::Int,
          48,
          0,
@@ -408,16 +408,10 @@ void addNormalWigglePhase(Method& m) {
     m.parameters.push_back(
         {"normal-wiggle-pair-offsets",
          "Normal wiggle: pairs of vertices",
-         "Not in the paper (extends §6.4's normal wiggle): after the one-vertex sweeps, the "
-         "two ends of each edge of an inconsistent face move along their normals together, "
-         "each among this many even offsets and half as many fine ones, accepted when their "
-         "stars have strictly fewer inconsistent faces. 0: off. Over 26 views (patch-contour-slide "
-         "off), final inconsistent faces 0 -> 24: spot_control 37 -> 35, bob_control 21 -> 19, "
-         "bigguy 196 -> 184, spot_quad 37 -> 31, bob_quad 80 -> 78, killeroo 735 -> 685, "
-         "bumpy torus 11 -> 10, the rest unchanged, no view worse. Default 48 (session 9; "
-         "24 -> 48 on the session-8 pipeline: spot_control 23 -> 21, bigguy 130 -> 129, "
-         "spot_quad 27 -> 26, fertility 56 -> 55, killeroo 451 -> 438, the rest unchanged, "
-         "no view worse).",
+         "Not in the paper: after the one-vertex sweeps (§6.4), the two ends of each "
+         "edge of an inconsistent face move along their normals together, each among "
+         "this many even and half as many fine offsets, kept when their stars improve. "
+         "0: off.",
          ParameterType::Int,
          48,
          0,
@@ -426,14 +420,9 @@ void addNormalWigglePhase(Method& m) {
     m.parameters.push_back(
         {"normal-wiggle-ring-pairs",
          "Normal wiggle: pairs off the face",
-         "Not in the paper (extends normal-wiggle-pair-offsets, which it needs > 0): when no "
-         "pair of an inconsistent face's own corners helps, a corner moves along its normal "
-         "together with one of its neighbours off the face (same offsets and acceptance: "
-         "strictly fewer inconsistent faces in the two stars, nothing turned over). Over 26 "
-         "views, final inconsistent faces off -> on: spot_control 21 -> 12, bob_control 5 -> "
-         "2, bigguy 129 -> 61, spot_quad 26 -> 13, bob_quad 34 -> 29, fertility 55 -> 25, "
-         "killeroo 438 -> 209, bumpy torus 11 -> 5, torus, ellipsoid and sphere 0, no view "
-         "worse.",
+         "Not in the paper: when no pair of an inconsistent face's own corners helps, a "
+         "corner moves along its normal together with one of its neighbours off the face "
+         "(same offsets and acceptance). Needs normal-wiggle-pair-offsets > 0.",
          ParameterType::Bool,
          true,
          0,
@@ -442,11 +431,9 @@ void addNormalWigglePhase(Method& m) {
     m.parameters.push_back(
         {"normal-wiggle-ring-pair-shift",
          "Normal wiggle: ring pairs' contour shift",
-         "Largest image displacement, in pixels, of a C vertex moved by a ring pair "
-         "(normal-wiggle-ring-pairs): the contour drawn moves with it (not in the paper). 0: no "
-         "bound. Bumpy torus, 26 views: no bound 5 faces, contour up to 3.39 px off (views 4, "
-         "21); 2 px: 7 faces, 1.90 px; 1 px or 0.5 px: 8 faces, 0.89 px (the one-vertex "
-         "wiggle's own).",
+         "With normal-wiggle-ring-pairs (not in the paper): largest image displacement, "
+         "in pixels, of a C vertex moved by a ring pair; the drawn contour moves with "
+         "it. 0: no bound.",
          ParameterType::Double,
          0.0,
          0.0,
@@ -455,34 +442,26 @@ void addNormalWigglePhase(Method& m) {
     m.parameters.push_back(
         {"cusp-end-retriangulation-faces",
          "Cusp radial ends: disc re-triangulation",
-         "Not in the paper. After the normal wiggle (and again after contour refinement, whose "
-         "new C vertices give new outlines), each face still inconsistent with a corner "
-         "at the far end c of a cusp's radial edge (Fig. 18e) is searched for a disc of up to "
-         "this many faces around it (grown across untagged, non-CC edges, every vertex on its "
-         "outline) whose best re-triangulation has strictly fewer inconsistent faces (every "
-         "VBO defined, no degenerate CC edge, no new edge at a cusp, no fold); the best disc is "
-         "re-triangulated by flips. Beside a cusp the image of the surface is a thin curved "
-         "strip, and a face r-x-c whose chord r-x passes on the wrong side of c (bumpy torus "
-         "view 4: 1.2 px) has an outline facing the wrong way: no single vertex move fixes it, "
-         "other edges of a few faces around do. 0: off. Over 26 views, final inconsistent "
-         "faces 0 -> 6: bumpy torus 5 -> 2, spot_control 10 -> 9, bob_control 1 -> 0, bigguy "
-         "49 -> 41, spot_quad 11 -> 8, bob_quad 17 -> 14, fertility 19 -> 16, killeroo 163 -> "
-         "131, no view worse; 7 or 8 gain nothing more on spot, bob and the bumpy torus.",
+         "Not in the paper: after the normal wiggle and after contour refinement, each "
+         "face still inconsistent at the far end of a cusp's radial edge (Fig. 18e) is "
+         "searched for a disc of up to this many faces whose re-triangulation has fewer "
+         "inconsistent faces. 0: off.",
          ParameterType::Int,
          6,
          0,
          8,
          {}});
-    m.parameters.push_back({"normal-wiggle-max-sweeps",
-                            "Normal wiggle: sweeps",
-                            "Largest number of sweeps over the vertices of inconsistent faces "
-                            "in the normal wiggle (§6.4; unspecified).",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            10000,
-                            {}});
-    m.phases.push_back(
+    m.parameters.push_back(
+        {"normal-wiggle-max-sweeps",
+         "Normal wiggle: sweeps",
+         "Largest number of sweeps over the vertices of inconsistent faces in the normal "
+         "wiggle (§6.4; the paper gives no stopping rule).",
+         ParameterType::Int,
+         100,
+         1,
+         10000,
+         {}});
+    m.addPhase(
         {"normal-wiggle",
          "§6.4 Vertex Wiggling in the Normal Direction: every vertex of an inconsistent face "
          "moves to f(u) + α n(u), α among normal-wiggle-samples offsets up to the mean "

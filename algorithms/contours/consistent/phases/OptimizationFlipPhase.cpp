@@ -209,30 +209,30 @@ void addOptimizationFlipPhase(Method& m) {
     m.parameters.push_back(
         {"flip-min-quality",
          "Flip: smallest quality",
-         "An optimization flip is discarded when a triangle it creates has a Bank-Smith quality "
-         "below this (§6.4 discards flips that make \"tiny triangles\"; the threshold is "
-         "unspecified in the paper).",
+         "An optimization flip (§6.4) is discarded when a triangle it creates has a "
+         "Bank-Smith quality below this (the paper discards \"tiny triangles\" without a "
+         "threshold).",
          ParameterType::Double,
          0.01,
          0.0,
          1.0,
          {}});
-    m.parameters.push_back({"flip-max-sweeps",
-                            "Flip: sweeps",
-                            "Largest number of sweeps over the inconsistent faces in the "
-                            "optimization flips (§6.4; the paper gives no stopping rule).",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            10000,
-                            {}});
+    m.parameters.push_back(
+        {"flip-max-sweeps",
+         "Flip: sweeps",
+         "Largest number of sweeps over the inconsistent faces in the optimization flips "
+         "(§6.4; the paper gives no stopping rule).",
+         ParameterType::Int,
+         100,
+         1,
+         10000,
+         {}});
     m.parameters.push_back(
         {"optimization-cusp-edits",
          "Optimization: edit at cusps",
-         "Optimization flips and edge splits (§6.4) may change the valence of a cusp vertex "
-         "once radial edges surround it (Fig. 18e): the valence 4 of Fig. 18d is needed only "
-         "for radial edge insertion, and §6.4 sets no such limit. Off: no flip or split ever "
-         "touches a cusp's valence.",
+         "May optimization flips and edge splits (§6.4) change a cusp vertex's valence "
+         "once radial edges surround it (Fig. 18e)? On: as in §6.4, which sets no limit; "
+         "the valence 4 of Fig. 18d matters only for radial edge insertion. Off: never.",
          ParameterType::Bool,
          true,
          0,
@@ -241,16 +241,15 @@ void addOptimizationFlipPhase(Method& m) {
     m.parameters.push_back(
         {"optimization-flip-pairs",
          "Flip: two-flip sequences",
-         "When no single flip of an inconsistent face's edges helps, also try a flip followed "
-         "by a flip of an outer edge of one of the two new faces. Not in the paper (off: §6.4 "
-         "as written, which tries only \"any of the three edges\" of the face); on (default) "
-         "halves the faces left inconsistent.",
+         "Not in the paper: when no single flip of an inconsistent face's edges helps "
+         "(§6.4 tries \"any of the three edges\"), also try a flip followed by a flip of "
+         "an outer edge of one of the two new faces.",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"optimization-flips",
          "§6.4 Edge Flipping: for every inconsistent face, the flip of one of its edges that "
          "removes the most inconsistent faces, ties to the best minimum Bank-Smith quality; no "

@@ -387,29 +387,29 @@ void addParameterWigglePhase(Method& m) {
                             1,
                             10000,
                             {}});
-    m.parameters.push_back({"wiggle-max-sweeps",
-                            "Wiggle: sweeps",
-                            "Largest number of sweeps over the vertices of inconsistent faces "
-                            "(§6.4: \"until no further improvements can be made\").",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            10000,
-                            {}});
+    m.parameters.push_back(
+        {"wiggle-max-sweeps",
+         "Wiggle: sweeps",
+         "Largest number of sweeps over the vertices of inconsistent faces (§6.4: "
+         "\"until no further improvements can be made\").",
+         ParameterType::Int,
+         100,
+         1,
+         10000,
+         {}});
     m.parameters.push_back(
         {"wiggle-radial-ends",
          "Wiggle: free radial ends",
-         "Not in the paper (§6.4 does not say how the wiggle treats radial edges): off keeps "
-         "the far end of a single radial edge on its radial plane and never moves the end of "
-         "two (the §6.3 radial triangles stay). On: when that finds nothing, the end also "
-         "samples its whole one-ring like any F or B vertex, and the radial edges whose plane "
-         "it leaves lose their tag (a cusp keeps one radial edge, or valence 4).",
+         "§6.4 does not say how the wiggle treats radial edges. Off: a single radial "
+         "edge's far end stays on its radial plane, the end of two never moves. On (not "
+         "in the paper): failing that, the end samples its whole one-ring and the radial "
+         "edges it leaves lose their tag.",
          ParameterType::Bool,
          false,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"parameter-wiggle",
          "§6.4 Vertex Wiggling in Parameter Space: every F or B vertex of an inconsistent "
          "face moves to the sample of its one-ring faces (wiggle-samples each) that leaves the "

@@ -700,50 +700,52 @@ void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"radial-root-tolerance",
          "Radial root tolerance",
-         "Bisection of h_p between the midpoints of p's edges stops when the point is closer "
-         "than this times the bounding-box diagonal to p's radial plane (§6.3 g; the paper "
-         "gives no tolerance). Also the bound checked at every radial edge's far end.",
+         "Bisection of h_p between the midpoints of p's edges (§6.3 g) stops within this "
+         "times the bounding-box diagonal of p's radial plane; also the bound checked at "
+         "every radial edge's far end. The paper gives no tolerance.",
          ParameterType::Double,
          1e-10,
          1e-16,
          1e-2,
          {}});
-    m.parameters.push_back({"radial-root-max-iterations",
-                            "Radial root iterations",
-                            "Maximum bisection steps per radial edge (§6.3 g; unspecified in "
-                            "the paper); an unconverged root skips the insertion.",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            1000,
-                            {}});
+    m.parameters.push_back(
+        {"radial-root-max-iterations",
+         "Radial root iterations",
+         "Maximum bisection steps per radial edge (§6.3 g; the paper gives no value); an "
+         "unconverged root skips the insertion.",
+         ParameterType::Int,
+         100,
+         1,
+         1000,
+         {}});
     m.parameters.push_back(
         {"radial-joint-min-barycentric",
          "Joint root margin",
-         "A joint zero of h_p1 and h_p2 (two C vertices, §6.3 g, Fig. 16d right) is used only "
-         "when its barycentric coordinates in the face are all at least this (no sliver next "
-         "to an edge; not in the paper); otherwise the radial edges are inserted one after "
-         "the other.",
+         "A joint zero of h_p1 and h_p2 (two C vertices, §6.3 g, Fig. 16d right) is used "
+         "only when its barycentric coordinates are all at least this, else the radial "
+         "edges are inserted one by one. 0: any joint zero, as in the paper; above 0 "
+         "(not in the paper): no slivers.",
          ParameterType::Double,
          0.05,
          0.0,
          0.33,
          {}});
-    m.parameters.push_back({"radial-joint-max-evaluations",
-                            "Joint root evaluations",
-                            "Evaluation budget of the joint-zero bisection per face (§6.3 g; "
-                            "not in the paper).",
-                            ParameterType::Int,
-                            20000,
-                            10,
-                            10000000,
-                            {}});
+    m.parameters.push_back(
+        {"radial-joint-max-evaluations",
+         "Joint root evaluations",
+         "Evaluation budget of the joint-zero bisection per face (§6.3 g; the paper "
+         "gives no value).",
+         ParameterType::Int,
+         20000,
+         10,
+         10000000,
+         {}});
     m.parameters.push_back(
         {"radial-keep-consistency",
          "Radialization keeps consistency",
-         "Radial edge insertion and radial flips (§6.3 g-h) skip an edit that leaves more "
-         "inconsistent faces around it than before. Not in the paper, which lets §6.4 repair "
-         "them; off reproduces the paper's rules alone.",
+         "Not in the paper: radial edge insertion and radial flips (§6.3 g-h) skip an "
+         "edit that leaves more inconsistent faces around it than before. Off: the "
+         "paper's rules alone, which leave the repair to §6.4.",
          ParameterType::Bool,
          true,
          0,
@@ -752,12 +754,10 @@ void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"radial-cusp-inside-hops",
          "Cusp inside region (contour edges)",
-         "§6.3 (Fig. 18e) builds no radial triangles in a cusp's \"inside\" region. 0: only "
-         "the cusp vertex itself gets none on that side (its two radial edges go to the "
-         "outside); k > 0: neither do the C vertices up to k contour edges away from the cusp "
-         "(their inside radial curves cross the thin wedge between the cusp's branches). The "
-         "paper does not say how far the region reaches; 1 (the cusp's fan) is the smallest "
-         "region that holds no radial triangle.",
+         "§6.3 (Fig. 18e) builds no radial triangles in a cusp's inside region; the "
+         "paper does not say how far it reaches. 0: the cusp vertex only; k: also the C "
+         "vertices up to k contour edges away. 1 (the cusp's fan) is the smallest region "
+         "that holds no radial triangle.",
          ParameterType::Int,
          1,
          0,
@@ -766,15 +766,9 @@ void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"radial-cusp-inside-pixels",
          "Cusp inside region (pixels)",
-         "Not in the paper: the inside region of radial-cusp-inside-hops also covers the C "
-         "vertices up to this many pixels from the cusp along the contour in the image, "
-         "however many contour edges away (the wedge between the cusp's branches is thin over "
-         "an image distance, not over a number of edges). 0: hops only. Default 10 (session "
-         "9): over 26 views, final inconsistent faces 0 -> 10: spot_control 12 -> 10, "
-         "bob_control 2 -> 1, bigguy 61 -> 49, spot_quad 13 -> 11, bob_quad 29 -> 17, "
-         "fertility 25 -> 19, killeroo 209 -> 163, bumpy torus 5 -> 5; 51 views better and 12 "
-         "worse by 1 or 2 faces (bigguy 5, killeroo 4, spot_quad, bob_quad, fertility 1 each), "
-         "no view newly above 0.05 %.",
+         "Not in the paper: the inside region of radial-cusp-inside-hops (Fig. 18e) also "
+         "covers the C vertices up to this many pixels from the cusp along the contour "
+         "in the image, however many contour edges away. 0: hops only.",
          ParameterType::Double,
          10.0,
          0.0,
@@ -783,18 +777,9 @@ void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"radial-cusp-pair-pixels",
          "Cusp pairs: both sides between them (pixels)",
-         "Not in the paper: a C vertex on the contour between two cusps whose inside regions "
-         "(Fig. 18e, radial-cusp-inside-hops / -pixels) lie on opposite sides, F inside one "
-         "and B inside the other (a zig-zag of the contour, as beside a swallowtail), gets its "
-         "radial edges on both sides when its paths along the contour to the two cusps add up "
-         "to at most this many pixels (each cusp's wedge is closed by the other one there). "
-         "0: off (the side of the first cusp the search meets gets none). Over 26 views, "
-         "final inconsistent faces 0 -> 0.05: spot_control 10 -> 9 (view 10: 3 -> 2, a pair "
-         "0.012 px apart), fertility 19 -> 17 (3 views better, view 8 0 -> 1), killeroo_small "
-         "163 -> 164 (3 better, 4 worse), the other meshes and the shapes unchanged; 0.015: "
-         "the same on fertility, killeroo 163 -> 163 (3 better, 3 worse); 1000 (every such "
-         "vertex the inside region reaches): spot 10 -> 7 but bigguy and killeroo_small 8 and "
-         "12 views worse. Off by default: it makes views worse.",
+         "Not in the paper: a C vertex between two cusps whose inside regions (Fig. 18e) "
+         "lie on opposite sides gets radial edges on both sides when its paths along the "
+         "contour to the two cusps add up to at most this many pixels. 0: off.",
          ParameterType::Double,
          0.0,
          0.0,
@@ -803,11 +788,10 @@ void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"radial-cusp-opposite-edge",
          "Cusp radial edges on the opposite edge",
-         "A cusp's radial curve leaves it tangent to the contour (Fig. 18e), so the root "
-         "between the midpoints of its edges often projects beyond the CC edge and Fig. 17 "
-         "skips it. On: the radial vertex is then put on the opposite edge of the crossing "
-         "face itself (split 2 -> 4), when that passes the fold, VBO, parameter-fold and "
-         "consistency checks (not in the paper).",
+         "Not in the paper: when the radial root of a cusp projects beyond its CC edge "
+         "and the fold test (Fig. 17) skips it, the radial vertex is put on the opposite "
+         "edge of the crossing face (a 2-to-4 split) when the fold, VBO and consistency "
+         "checks pass.",
          ParameterType::Bool,
          true,
          0,
@@ -816,30 +800,22 @@ void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(
         {"radial-cusp-both-sides",
          "Ambiguous cusp: one radial edge per side",
-         "Fig. 18e puts a cusp's two radial edges on its outside region, the side whose fan "
-         "the radial plane crosses twice. When each side is crossed exactly once the outside "
-         "is not identified; on: each side gets one radial edge instead of none (not in the "
-         "paper). Over 26 views, final inconsistent faces off -> on: spot_control 41 -> 39, "
-         "killeroo_small 813 -> 795, the other ConTesse meshes and the procedural shapes "
-         "unchanged, no view worse.",
+         "Not in the paper: when each side of a cusp is crossed once by its radial "
+         "plane, so that the outside region of Fig. 18e is not identified, each side "
+         "gets one radial edge instead of none.",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"radial-edge-insertion",
-         "§6.3 g (Fig. 15g, 16d, 17, 18e): for every C vertex p and each side (F, B; at a "
-         "cusp two edges on the outside region), a face whose opposite edge p's radial plane "
-         "crosses is split 1 -> 3 at the root of h_p between the midpoints of p's edges (two "
-         "C vertices: the joint zero of h_p1 and h_p2 when one exists); p-r is tagged radial. "
-         "Fig. 17 fold prevention: the new vertex must project inside the face, else the "
-         "adjacent edge of the folding triangle is flipped, else the insertion is skipped. Not "
-         "in the paper: when h_p keeps its sign between the midpoints, the segments at 3/4 and "
-         "7/8 of p's edges are searched, when the nearest crossing face fails, the next "
-         "ones are tried, and a cusp whose face insertions all fail gets its radial vertex on "
-         "the crossed opposite edge (radial-cusp-opposite-edge); a cusp whose sides are each "
-         "crossed once gets one radial edge per side (radial-cusp-both-sides).",
+         "§6.3 g (Fig. 15g, 16d, 17, 18e): for every C vertex p and each side (at a cusp, two "
+         "edges on its outside region), a face whose opposite edge p's radial plane crosses is "
+         "split 1-to-3 at the root of h_p between the midpoints of p's edges (two C vertices: "
+         "the joint zero of h_p1 and h_p2); p-r is tagged radial; Fig. 17 fold prevention. Not "
+         "in the paper: further segments and faces are tried when these fail, and the cusp "
+         "fallbacks radial-cusp-opposite-edge and radial-cusp-both-sides.",
          runRadialEdgeInsertion, checkRadialEdgeInsertion});
 }
 

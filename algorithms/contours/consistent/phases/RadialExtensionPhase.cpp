@@ -758,33 +758,29 @@ void addRadialExtensionPhase(Method& m) {
     m.parameters.push_back(
         {"extension-samples",
          "Extension: samples",
-         "Radial edge extension samples the radial curve of p across the inconsistent face and "
-         "the face beyond it at this many lines per face (§6.4; the density is unspecified in "
-         "the paper).",
+         "Lines per face on which radial edge extension samples p's radial curve in the "
+         "inconsistent face and the face beyond it (§6.4; the paper gives no density).",
          ParameterType::Int,
          10,
          1,
          1000,
          {}});
-    m.parameters.push_back({"extension-max-sweeps",
-                            "Extension: sweeps",
-                            "Largest number of sweeps over the radial edges (§6.4: \"repeated as "
-                            "long as the number of inconsistent triangles decreases\").",
-                            ParameterType::Int,
-                            100,
-                            1,
-                            10000,
-                            {}});
+    m.parameters.push_back(
+        {"extension-max-sweeps",
+         "Extension: sweeps",
+         "Largest number of sweeps over the radial edges (§6.4: \"repeated as long as "
+         "the number of inconsistent triangles decreases\").",
+         ParameterType::Int,
+         100,
+         1,
+         10000,
+         {}});
     m.parameters.push_back(
         {"extension-cusp-push-depth",
          "Extension: cusp push depth",
-         "The far end q of a cusp's radial edge that still touches an inconsistent face is "
-         "pushed along the cusp's radial curve through up to this many faces, flipping each "
-         "edge the curve crosses (§6.4 i repeated; not in the paper, which looks one face "
-         "ahead). A cusp's radial curve leaves it along the view ray (Fig. 18e), so q lands "
-         "within a hundredth of a pixel of the cusp and one-face moves cannot help. Run when "
-         "single and pair moves stop improving, and again after the normal wiggle "
-         "(extension-cusp-push-final). 0: off.",
+         "Not in the paper (§6.4 looks one face ahead): the far end of a cusp's radial "
+         "edge at an inconsistent face is pushed along the cusp's radial curve through "
+         "up to this many faces, flipping each edge the curve crosses. 0: off.",
          ParameterType::Int,
          5,
          0,
@@ -793,9 +789,9 @@ void addRadialExtensionPhase(Method& m) {
     m.parameters.push_back(
         {"extension-cusp-push-final",
          "Extension: cusp push after the normal wiggle",
-         "Pushes the cusps' radial ends again (extension-cusp-push-depth) once the normal "
-         "wiggle (§6.4, final step) is done, on the faces still inconsistent then (not in the "
-         "paper).",
+         "Not in the paper: the cusps' radial ends are pushed again "
+         "(extension-cusp-push-depth) after the normal wiggle (§6.4), on the faces still "
+         "inconsistent then.",
          ParameterType::Bool,
          true,
          0,
@@ -804,17 +800,16 @@ void addRadialExtensionPhase(Method& m) {
     m.parameters.push_back(
         {"extension-push-every-end-final",
          "Extension: push every radial end at the end",
-         "After the cusps' final push (extension-cusp-push-final), the far ends of all radial "
-         "edges that still touch an inconsistent face are pushed the same way, each push kept "
-         "only when fewer faces are inconsistent; last, so it never pre-empts another move. "
-         "Needs extension-cusp-push-depth > 0 and extension-cusp-push-final (not in the "
-         "paper).",
+         "Not in the paper: after the cusps' final push, the far ends of all radial "
+         "edges at inconsistent faces are pushed the same way, each push kept only when "
+         "fewer faces are inconsistent. Needs extension-cusp-push-depth > 0 and "
+         "extension-cusp-push-final.",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"radial-extension",
          "§6.4 Radial Edge Extension (Fig. 15i, 16f): for a radial edge p-q whose far end q "
          "touches an inconsistent face, q slides along p's radial curve beyond q (sampled in "

@@ -471,16 +471,16 @@ void addRadialFlipPhase(Method& m) {
     m.parameters.push_back(
         {"radial-fan-sequences",
          "Radial flip fan sequences",
-         "When no single flip increases the standard radial triangles, flip a C vertex's "
-         "fan between its radial edge and the next C or radial-edge vertex away as one "
-         "sequence (kept only if the standard radial triangles around increase). Not in the "
-         "paper, whose §6.3 h greedy single flips stop there; off reproduces them alone.",
+         "Not in the paper: when no single flip increases the standard radial triangles "
+         "(§6.3 h), a C vertex's fan between its radial edge and the next C or "
+         "radial-edge vertex is flipped away as one sequence, kept only if they "
+         "increase.",
          ParameterType::Bool,
          true,
          0,
          0,
          {}});
-    m.phases.push_back(
+    m.addPhase(
         {"radial-flips",
          "§6.3 h (Fig. 15h, 16e): every non-radial FC / BC edge incident on a C vertex is "
          "flipped when the flip increases the number of standard radial triangles without a "
