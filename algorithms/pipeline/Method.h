@@ -2,6 +2,7 @@
 // A contour method: its parameters and its ordered phases (DESIGN.md, phase
 // model). The GUI and the CLI step every method the same way through Runner.
 #include "camera/Camera.h"
+#include "pipeline/MethodOutputs.h"
 #include "pipeline/Parameters.h"
 #include "pipeline/Snapshot.h"
 
@@ -59,6 +60,7 @@ struct Method {
     std::string description;
     std::vector<ParameterSpec> parameters;
     std::vector<Phase> phases;
+    MethodOutputs outputs; // what the method adds to the reports (MethodOutputs.h)
 
     const ParameterSpec* parameter(const std::string& parameterName) const;
     // Index in `phases` of the phase called `phaseName`, or -1. Phases are

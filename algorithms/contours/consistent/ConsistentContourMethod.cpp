@@ -5,6 +5,7 @@
 #include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentOutputs.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "visibility/SimplificationPhase.h"
 #include "visibility/VisibilityPhase.h"
@@ -97,6 +98,7 @@ Method makeConsistentContourMethod() {
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);
     addSimplificationPhase(m);
+    m.outputs = consistentOutputs();
     return m;
 }
 
