@@ -193,6 +193,12 @@ void countConflicts(const Snapshot& last, const ViewName& view, StrictFindings& 
     }
 }
 
+// The SVG's <title>: "<mesh> - <method label>[, view N], after <phase>".
+std::string viewTitle(const BatchOptions& o, const ViewName& view, const Snapshot& last) {
+    return o.meshPath + " - " + o.method->label +
+           (view.several ? ", " + view.prefix("") : std::string()) + ", after " + last.phaseName;
+}
+
 // What every view's outputs share.
 struct RunOutputs {
     const BatchOptions& options;
@@ -343,10 +349,8 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
         countViolations(runner->snapshots(), view, findings);
         countConflicts(runner->current(), view, findings);
         report.addView(camera, runner->snapshots());
-        const std::string title = o.meshPath + " - " + method.label +
-                                  (view.several ? ", " + view.prefix("") : std::string()) +
-                                  ", after " + runner->current().phaseName;
-        addViewOutputs(outputs, {camera, *runner, view, title}, out);
+        addViewOutputs(outputs, {camera, *runner, view, viewTitle(o, view, runner->current())},
+                       out);
     }
     if (!o.jsonPath.empty())
         outputs.pending.files.push_back({o.jsonPath, report.text(), {}});
