@@ -13,10 +13,6 @@ nlohmann::json vec3(const Vec3& v) {
     return {v.x(), v.y(), v.z()};
 }
 
-} // namespace
-
-namespace {
-
 const char* labelText(int label) {
     return label > 0 ? "F" : label < 0 ? "B" : "C";
 }
