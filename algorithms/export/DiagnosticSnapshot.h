@@ -10,8 +10,8 @@
 //   report.json       JsonReport with this one view: mesh, method, parameters,
 //                     camera, every phase up to the one reached (time,
 //                     counters, post-conditions, notes), totals, curves, the
-//                     view graph, and every inconsistent face with its
-//                     details ("inconsistent_faces", JsonReport.h); plus
+//                     view graph, and what the method adds
+//                     (MethodOutputs.h); plus
 //                     "snapshot": {"phase_reached", "phase_name", "files"}
 //   view-2d.svg       the curves or view graph as the camera sees them
 //                     (SvgWriter.h)

@@ -16,11 +16,13 @@
 //     "phases": [{"index", "name", "description", "seconds",
 //                 "counters" {name: value; the counters this phase set or changed},
 //                 "invariants" [{"name", "violations", "first_example"}],
-//                 "violations", "notes" [text]}],
+//                 "violations", "notes" [text],
+//                 ... and the members the method adds}],
 //     "totals": {"seconds", "invariant_violations", "curves", "contour_chains",
 //                "closed_loops", "open_chains", "boundary_curves",
 //                "contour_points", "contour_length_px", "boundary_length_px",
-//                "clipped_curves", "counters" (every counter of the last snapshot)},
+//                "clipped_curves", "counters" (every counter of the last snapshot),
+//                ... and the members the method adds},
 //     "curves": [{"index", "type", "closed", "points", "length_px", "pieces",
 //                 "hidden_points"}],
 //     "view_graph": (only when the last snapshot has a view graph) {
@@ -43,18 +45,7 @@
 //                  "local_occluders"}],
 //       "conflicts": [{"chain", "propagated_qi", "ray_qi", "reason"}]
 //     },
-//     "inconsistent_faces": (only when the last snapshot has the "consistent"
-//       face field: the consistent method) [{"face", "vertices" [3 ids],
-//       "reason" (which condition of Bénard 2014 Definitions 1-2 fails),
-//       "vbo" (F|B|undefined), "facing" (front|back|edge-on),
-//       "vertex_labels" [F|B|C x3], "g" [x3], "radial_curvature" [x3],
-//       "positions" [[x,y,z] x3], "preimages" [{"face", "uv" [u,v]} x3],
-//       "provenance" [x3], "cusp" [x3], "vertex_changed_by_phase" [x3],
-//       "radial", "standard_radial", "folded", "domain_face",
-//       "changed_by_phase" (index, -1 input), "changed_by_phase_name",
-//       "neighbours" [face across edge v0-v1, v1-v2, v2-v0; -1 boundary],
-//       "inconsistent_neighbours"}] (a per-vertex or per-face field the
-//       snapshot lacks is left out)
+//     ... and the members the method adds (Method::outputs, MethodOutputs.h)
 //   }]
 // }
 //
@@ -78,10 +69,6 @@ nlohmann::json phaseJson(const Phase& phase, const Snapshot& snapshot, const Sna
 nlohmann::json curvesJson(const Snapshot& snapshot, const Camera& camera);
 // The "view_graph" object above (points in pixels as stored in the graph).
 nlohmann::json viewGraphJson(const ViewGraph& graph);
-// The "inconsistent_faces" array above: every face whose "consistent" field
-// is 0, with its details (an empty array without that field). `method`
-// names the phases in "changed_by_phase_name".
-nlohmann::json inconsistentFacesJson(const Snapshot& snapshot, const Method& method);
 
 class JsonReport {
 public:

@@ -3,6 +3,7 @@
 // ordered phases. The GUI and the CLI step every method the same way through
 // Runner.
 #include "camera/Camera.h"
+#include "pipeline/MethodOutputs.h"
 #include "pipeline/Parameters.h"
 #include "pipeline/Snapshot.h"
 
@@ -73,6 +74,7 @@ struct Method {
     std::vector<std::string> parameterGroups() const;
     // The preset called `presetName`, or null.
     const ParameterPreset* preset(const std::string& presetName) const;
+    MethodOutputs outputs; // what the method adds to the reports (MethodOutputs.h)
 
     const ParameterSpec* parameter(const std::string& parameterName) const;
     // Index in `phases` of the phase called `phaseName`, or -1. Phases are

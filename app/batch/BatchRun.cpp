@@ -1,23 +1,23 @@
 #include "BatchRun.h"
 
+#include "BatchCameras.h"
+#include "PendingOutputs.h"
 #include "SnapshotImages.h"
 #include "Summary.h"
 #include "export/DiagnosticSnapshot.h"
 #include "export/JsonReport.h"
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
-#include "core/AtomicFile.h"
 #include "mesh/MeshError.h"
 #include "mesh/io/MeshReader.h"
 #include "mesh/io/MeshWriter.h"
 #include "pipeline/Runner.h"
 #include "pipeline/ViewGraph.h"
 
-#include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <vector>
 
@@ -25,81 +25,7 @@ namespace contour::batch {
 
 namespace {
 
-// The default view: from the front-right, a little above (a 3/4 view).
-const Vec3 kDefaultViewDirection(1.0, 0.5, 2.0);
-
-Camera readCameraFile(const BatchOptions& o) {
-    Camera camera;
-    try {
-        camera = Camera::readJson(o.cameraFile);
-    } catch (const std::exception& e) {
-        throw BatchFailure(e.what());
-    }
-    if (o.camera.width)
-        camera.viewport.width = *o.camera.width;
-    if (o.camera.height)
-        camera.viewport.height = *o.camera.height;
-    return camera;
-}
-
-std::shared_ptr<const PolygonMesh> loadMesh(const std::string& path) {
-    try {
-        return std::make_shared<const PolygonMesh>(readMesh(path));
-    } catch (const MeshError& e) {
-        throw BatchFailure(e.what());
-    } catch (const std::exception& e) {
-        throw BatchFailure(path + ": " + e.what());
-    }
-}
-
-// Projection settings that apply to every camera, also the 26 views.
-void applyProjection(const CameraOverrides& c, Camera& camera) {
-    if (c.orthographic)
-        camera.projection = Projection::Orthographic;
-    if (c.fovYDegrees)
-        camera.fovYDegrees = *c.fovYDegrees;
-    if (c.orthoHeight)
-        camera.orthoHeight = *c.orthoHeight;
-}
-
-std::vector<Camera> placeCameras(const BatchOptions& o, const BoundingBox& box,
-                                 const Camera* fromFile) {
-    Viewport viewport;
-    viewport.width = o.camera.width.value_or(viewport.width);
-    viewport.height = o.camera.height.value_or(viewport.height);
-    std::vector<Camera> cameras;
-    if (o.views26) {
-        cameras = Camera::views26(box, viewport);
-        for (size_t i = 0; i < cameras.size(); ++i) {
-            applyProjection(o.camera, cameras[i]);
-            if (const std::string problem = cameras[i].validate(); !problem.empty())
-                throw BatchFailure(o.meshPath + ": view " + std::to_string(i) +
-                                   " of the 26-view protocol has no valid camera (" + problem +
-                                   "); is the mesh flat?");
-        }
-        return cameras;
-    }
-    if (fromFile)
-        return {*fromFile};
-    Camera camera = Camera::framing(box, kDefaultViewDirection, viewport);
-    if (o.camera.eye)
-        camera.eye = *o.camera.eye;
-    if (o.camera.target)
-        camera.target = *o.camera.target;
-    if (o.camera.up) {
-        camera.up = *o.camera.up;
-    } else {
-        // Without --up, keep the default up away from the viewing direction.
-        const Vec3 view = camera.target - camera.eye;
-        const double length = view.norm();
-        if (length > 0.0 && view.cross(camera.up).norm() < 1e-6 * length)
-            camera.up = Vec3(0, 0, 1);
-    }
-    applyProjection(o.camera, camera);
-    if (const std::string problem = camera.validate(); !problem.empty())
-        throw UsageError("camera: " + problem);
-    return {camera};
-}
+constexpr const char* kToolName = "contour-batch";
 
 // Fails before any work when an output's folder does not exist.
 void checkOutputFolders(const BatchOptions& o) {
@@ -117,13 +43,91 @@ void checkOutputFolders(const BatchOptions& o) {
     }
 }
 
-// An output to write once every view has run: its text, or (for meshes,
-// whose writer builds the text itself) a function that writes it atomically.
-struct PendingFile {
-    std::string path;
-    std::string content;
-    std::function<void(const std::string&)> write;
+std::shared_ptr<const PolygonMesh> loadMesh(const std::string& path) {
+    try {
+        return std::make_shared<const PolygonMesh>(readMesh(path));
+    } catch (const MeshError& e) {
+        throw BatchFailure(e.what());
+    } catch (const std::exception& e) {
+        throw BatchFailure(path + ": " + e.what());
+    }
+}
+
+// The method's input: the mesh as read and its triangulation.
+Snapshot readInput(const BatchOptions& o) {
+    const std::shared_ptr<const PolygonMesh> cage = loadMesh(o.meshPath);
+    try {
+        return makeInputSnapshot(cage);
+    } catch (const std::exception& e) {
+        throw BatchFailure(o.meshPath + ": " + e.what());
+    }
+}
+
+// The mesh path a session file records, so it reopens from anywhere.
+std::string absoluteMeshPath(const std::string& meshPath) {
+    std::error_code error;
+    const std::string absolute =
+        std::filesystem::absolute(meshPath, error).lexically_normal().string();
+    return error ? meshPath : absolute;
+}
+
+// The snapshot's two PNGs, drawn by the workbench's views when this build
+// and this machine can (SnapshotImages.h); said once when they cannot.
+std::unique_ptr<SnapshotImages> snapshotImages(const BatchOptions& o, std::ostream& out) {
+    if (o.snapshotDir.empty())
+        return nullptr;
+    auto images = std::make_unique<SnapshotImages>();
+    if (!images->available())
+        out << "--snapshot-dir: " << snapshotFiles::kPng3d << " and " << snapshotFiles::kPng2d
+            << " not written: " << images->unavailableReason() << "\n";
+    return images;
+}
+
+// Which view of several a message is about ("" for a single view).
+struct ViewName {
+    int index = 0;
+    bool several = false;
+
+    // "view 3" followed by `separator`, or "".
+    std::string prefix(const char* separator) const {
+        return several ? "view " + std::to_string(index) + separator : std::string();
+    }
+    // "03": the two-digit number of per-view file and folder names.
+    std::string number() const {
+        std::string text = std::to_string(index);
+        if (index < 10)
+            text.insert(0, 1, '0');
+        return text;
+    }
 };
+
+// Steps the method through the requested phases from one camera, printing
+// each phase and the view's totals.
+std::unique_ptr<Runner> runView(const BatchOptions& o, const Snapshot& input, const Camera& camera,
+                                const ViewName& view, int viewCount, std::ostream& out) {
+    const Method& method = *o.method;
+    const int phases = o.phases.value_or(static_cast<int>(method.phases.size()));
+    printViewHeader(out, view.index, viewCount, camera);
+    std::unique_ptr<Runner> runner;
+    try {
+        runner = std::make_unique<Runner>(method, input, camera, o.parameters);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    while (runner->completedPhases() < phases) {
+        try {
+            runner->step();
+        } catch (const std::exception& e) {
+            out.flush();
+            throw BatchFailure(view.prefix(": ") + e.what());
+        }
+        const int done = runner->completedPhases();
+        printPhase(out, method, runner->snapshot(done), runner->snapshot(done - 1));
+    }
+    printViewTotals(out, runner->current(), camera);
+    printMethodSummary(out, {method, camera, runner->snapshots()});
+    return runner;
+}
 
 // Conflicts the methods produce on purpose: a vote overriding propagation
 // (Bénard 2014 §8.4, reason "consistent-vote") and the interpolated
@@ -149,249 +153,210 @@ bool conflictByDesign(const ViewGraph& graph, const VisibilityConflict& conflict
     }
 }
 
-// A diagnostic snapshot to write once every view has run.
-struct PendingSnapshot {
-    std::string folder;
-    std::vector<SnapshotFile> files;
+// What --strict fails on, over every view: violated post-conditions and
+// visibility conflicts that are not by design, each with its first example.
+struct StrictFindings {
+    long long violations = 0;
+    std::string firstViolation;
+    long long conflicts = 0;
+    std::string firstConflict;
 };
 
-SvgOptions svgOptions(const std::string& title) {
+void countViolations(const std::vector<Snapshot>& snapshots, const ViewName& view,
+                     StrictFindings& findings) {
+    for (const Snapshot& s : snapshots)
+        for (const InvariantCheck& c : s.invariants)
+            if (c.violations > 0) {
+                if (findings.violations == 0)
+                    findings.firstViolation = view.prefix(", ") + s.phaseName + ": " + c.name +
+                                              " (" + std::to_string(c.violations) + "x, first " +
+                                              c.firstExample + ")";
+                findings.violations += c.violations;
+            }
+}
+
+// A ray test that disagrees with exact QI propagation is a bug or a
+// degenerate input: --strict fails on those too (the votes' conflicts are
+// expected, see conflictByDesign).
+void countConflicts(const Snapshot& last, const ViewName& view, StrictFindings& findings) {
+    if (!last.viewGraph)
+        return;
+    const ViewGraph& graph = *last.viewGraph;
+    for (const VisibilityConflict& c : graph.conflicts) {
+        if (conflictByDesign(graph, c))
+            continue;
+        if (findings.conflicts++ == 0)
+            findings.firstConflict = view.prefix(", ") + "chain " + std::to_string(c.chain) +
+                                     ": propagated QI " + std::to_string(c.propagatedQi) +
+                                     ", ray test " + std::to_string(c.rayQi) + " (" + c.reason +
+                                     ")";
+    }
+}
+
+// The SVG's <title>: "<mesh> - <method label>[, view N], after <phase>".
+std::string viewTitle(const BatchOptions& o, const ViewName& view, const Snapshot& last) {
+    return o.meshPath + " - " + o.method->label +
+           (view.several ? ", " + view.prefix("") : std::string()) + ", after " + last.phaseName;
+}
+
+// What every view's outputs share.
+struct RunOutputs {
+    const BatchOptions& options;
+    std::string absoluteMesh;
+    SnapshotImages* images = nullptr; // with --snapshot-dir only
+    PendingOutputs pending;
+};
+
+// One view's run, as its outputs need it.
+struct ViewRun {
+    const Camera& camera;
+    const Runner& runner;
+    ViewName name;
+    std::string title; // the SVG's <title>
+
+    // The path of a per-view output: `path` itself for a single view.
+    std::string outputPath(const std::string& path) const {
+        return name.several ? viewOutputPath(path, name.index) : path;
+    }
+};
+
+void addSvg(RunOutputs& r, const ViewRun& v) {
     SvgOptions options;
-    options.title = title;
-    return options;
+    options.title = v.title;
+    r.pending.files.push_back(
+        {v.outputPath(r.options.svgPath), svgDocument(v.runner.current(), v.camera, options), {}});
+}
+
+void addCameraFile(RunOutputs& r, const ViewRun& v) {
+    r.pending.files.push_back(
+        {v.outputPath(r.options.writeCameraPath), v.camera.toJson().dump(2) + "\n", {}});
+}
+
+void addDiagnosticSnapshot(RunOutputs& r, const ViewRun& v, std::ostream& out) {
+    const BatchOptions& o = r.options;
+    const Method& method = *o.method;
+    DiagnosticSnapshotRun run;
+    run.toolName = kToolName;
+    run.toolVersion = CONTOUR_VERSION;
+    run.meshPath = o.meshPath;
+    run.method = &method;
+    run.parameters = o.parameters;
+    run.camera = v.camera;
+    run.snapshots = v.runner.snapshots();
+    run.title = v.title;
+    run.session.meshPath = r.absoluteMesh;
+    run.session.method = method.name;
+    run.session.parameters = o.parameters;
+    run.session.camera = v.camera;
+    run.session.phaseReached = v.runner.completedPhases();
+    run.session.phaseName = v.runner.current().phaseName;
+    PendingSnapshot snapshot;
+    snapshot.folder =
+        v.name.several
+            ? (std::filesystem::path(o.snapshotDir) / ("view" + v.name.number())).string()
+            : o.snapshotDir;
+    if (r.images->available()) {
+        try {
+            snapshot.files = r.images->render(v.runner.current(), v.camera);
+        } catch (const std::exception& e) {
+            throw BatchFailure(snapshot.folder + "/" + e.what());
+        }
+        run.otherFiles = {snapshotFiles::kPng3d, snapshotFiles::kPng2d};
+    }
+    std::vector<std::string> notes;
+    for (SnapshotFile& file : diagnosticSnapshotFiles(run, &notes))
+        snapshot.files.push_back(std::move(file));
+    if (v.name.index == 0) // the same notes in every view
+        for (const std::string& note : notes)
+            out << "  --snapshot-dir: " << note << "\n";
+    r.pending.snapshots.push_back(std::move(snapshot));
+}
+
+void addPly(RunOutputs& r, const ViewRun& v, std::ostream& out) {
+    const std::string& plyPath = r.options.plyPath;
+    const Snapshot& last = v.runner.current();
+    if (!last.mesh)
+        throw BatchFailure(plyPath + ": the snapshot after " + last.phaseName +
+                           " has no mesh to write");
+    auto labels = std::make_shared<const SnapshotPlyLabels>(snapshotPlyLabels(last));
+    if (v.name.index == 0) // the same fields in every view
+        for (const std::string& skipped : labels->skipped)
+            out << "  --ply leaves out field " << skipped << "\n";
+    r.pending.files.push_back(
+        {v.outputPath(plyPath), {}, [mesh = last.mesh, labels](const std::string& path) {
+             writePly(*mesh, path, labels->labels);
+         }});
+}
+
+// The per-view outputs the options ask for, in a fixed order: SVG, camera,
+// snapshot folder, PLY.
+void addViewOutputs(RunOutputs& r, const ViewRun& v, std::ostream& out) {
+    const BatchOptions& o = r.options;
+    if (!o.svgPath.empty())
+        addSvg(r, v);
+    if (!o.writeCameraPath.empty())
+        addCameraFile(r, v);
+    if (!o.snapshotDir.empty())
+        addDiagnosticSnapshot(r, v, out);
+    if (!o.plyPath.empty())
+        addPly(r, v, out);
+}
+
+// 3 when --strict finds a violated post-condition or a conflict (said on
+// stderr), else 0.
+int strictExitCode(const BatchOptions& o, const StrictFindings& f, std::ostream& out) {
+    if (!o.strict || (f.violations == 0 && f.conflicts == 0))
+        return 0;
+    out.flush();
+    if (f.violations > 0)
+        std::cerr << "contour-batch: --strict: " << f.violations
+                  << " post-conditions violated; first: " << f.firstViolation << "\n";
+    if (f.conflicts > 0)
+        std::cerr << "contour-batch: --strict: " << f.conflicts
+                  << " visibility conflicts (a ray test disagrees with exact propagation); "
+                     "first: "
+                  << f.firstConflict << "\n";
+    return 3;
 }
 
 } // namespace
 
 std::string viewOutputPath(const std::string& path, int view) {
     const std::filesystem::path p(path);
-    // Two digits; built without `"0" + string`, which GCC 12 flags (-Wrestrict).
-    std::string number = std::to_string(view);
-    if (view < 10)
-        number.insert(0, 1, '0');
     std::filesystem::path name = p.stem();
-    name += "_view" + number;
+    name += "_view" + ViewName{view, true}.number();
     name += p.extension();
     return (p.parent_path() / name).string();
 }
 
 int runBatch(const BatchOptions& o, std::ostream& out) {
     checkOutputFolders(o);
-    std::unique_ptr<Camera> fileCamera;
-    if (!o.cameraFile.empty())
-        fileCamera = std::make_unique<Camera>(readCameraFile(o));
-    if (o.sessionCamera) {
-        fileCamera = std::make_unique<Camera>(*o.sessionCamera);
-        if (o.camera.width)
-            fileCamera->viewport.width = *o.camera.width;
-        if (o.camera.height)
-            fileCamera->viewport.height = *o.camera.height;
-        for (const std::string& warning : o.sessionWarnings)
-            out << "session: " << warning << "\n";
-    }
-
-    const std::shared_ptr<const PolygonMesh> cage = loadMesh(o.meshPath);
-    Snapshot input;
-    try {
-        input = makeInputSnapshot(cage);
-    } catch (const std::exception& e) {
-        throw BatchFailure(o.meshPath + ": " + e.what());
-    }
-    const std::vector<Camera> cameras =
-        placeCameras(o, input.mesh->boundingBox(), fileCamera.get());
-
+    const std::optional<Camera> given = givenCamera(o, out);
+    const Snapshot input = readInput(o);
+    const std::vector<Camera> cameras = placeCameras(o, input.mesh->boundingBox(), given);
     const Method& method = *o.method;
-    const int phases = o.phases.value_or(static_cast<int>(method.phases.size()));
     printRunHeader(out, o.meshPath, input, method, o.parameters);
 
-    JsonReport report("contour-batch", CONTOUR_VERSION, o.meshPath, input, method, o.parameters);
-    std::vector<PendingFile> files;
-    std::vector<PendingSnapshot> snapshots;
-    std::string absoluteMesh;
-    {
-        std::error_code error;
-        absoluteMesh = std::filesystem::absolute(o.meshPath, error).lexically_normal().string();
-        if (error)
-            absoluteMesh = o.meshPath;
-    }
-    long long violations = 0;
-    std::string firstViolation;
-    long long conflicts = 0;
-    std::string firstConflict;
-    const bool several = cameras.size() > 1;
-    // The snapshot's two PNGs, drawn by the workbench's views when this build
-    // and this machine can (SnapshotImages.h); said once when they cannot.
-    std::unique_ptr<SnapshotImages> images;
-    if (!o.snapshotDir.empty()) {
-        images = std::make_unique<SnapshotImages>();
-        if (!images->available())
-            out << "--snapshot-dir: " << snapshotFiles::kPng3d << " and " << snapshotFiles::kPng2d
-                << " not written: " << images->unavailableReason() << "\n";
-    }
-    for (size_t v = 0; v < cameras.size(); ++v) {
-        const Camera& camera = cameras[v];
-        const int view = static_cast<int>(v);
-        printViewHeader(out, view, static_cast<int>(cameras.size()), camera);
-        std::unique_ptr<Runner> runner;
-        try {
-            runner = std::make_unique<Runner>(method, input, camera, o.parameters);
-        } catch (const std::invalid_argument& e) {
-            throw UsageError(e.what());
-        }
-        while (runner->completedPhases() < phases) {
-            try {
-                runner->step();
-            } catch (const std::exception& e) {
-                out.flush();
-                throw BatchFailure((several ? "view " + std::to_string(view) + ": " : "") +
-                                   e.what());
-            }
-            const int done = runner->completedPhases();
-            printPhase(out, method, runner->snapshot(done), runner->snapshot(done - 1));
-        }
-        printViewTotals(out, runner->current(), camera);
-        for (const Snapshot& s : runner->snapshots())
-            for (const InvariantCheck& c : s.invariants)
-                if (c.violations > 0) {
-                    if (violations == 0)
-                        firstViolation = (several ? "view " + std::to_string(view) + ", " : "") +
-                                         s.phaseName + ": " + c.name + " (" +
-                                         std::to_string(c.violations) + "x, first " +
-                                         c.firstExample + ")";
-                    violations += c.violations;
-                }
-        // A ray test that disagrees with exact QI propagation is a bug or a
-        // degenerate input: --strict fails on those too (the votes' conflicts
-        // are expected, see conflictByDesign).
-        if (const auto& graph = runner->current().viewGraph)
-            for (const VisibilityConflict& c : graph->conflicts) {
-                if (conflictByDesign(*graph, c))
-                    continue;
-                if (conflicts++ == 0)
-                    firstConflict = (several ? "view " + std::to_string(view) + ", " : "") +
-                                    "chain " + std::to_string(c.chain) + ": propagated QI " +
-                                    std::to_string(c.propagatedQi) + ", ray test " +
-                                    std::to_string(c.rayQi) + " (" + c.reason + ")";
-            }
+    JsonReport report(kToolName, CONTOUR_VERSION, o.meshPath, input, method, o.parameters);
+    const std::unique_ptr<SnapshotImages> images = snapshotImages(o, out);
+    RunOutputs outputs{o, absoluteMeshPath(o.meshPath), images.get(), {}};
+    StrictFindings findings;
+    const int viewCount = static_cast<int>(cameras.size());
+    for (int index = 0; index < viewCount; ++index) {
+        const Camera& camera = cameras[static_cast<size_t>(index)];
+        const ViewName view{index, viewCount > 1};
+        const std::unique_ptr<Runner> runner = runView(o, input, camera, view, viewCount, out);
+        countViolations(runner->snapshots(), view, findings);
+        countConflicts(runner->current(), view, findings);
         report.addView(camera, runner->snapshots());
-        const std::string title = o.meshPath + " - " + method.label +
-                                  (several ? ", view " + std::to_string(view) : "") + ", after " +
-                                  runner->current().phaseName;
-        if (!o.svgPath.empty())
-            files.push_back({several ? viewOutputPath(o.svgPath, view) : o.svgPath,
-                             svgDocument(runner->current(), camera, svgOptions(title)),
-                             {}});
-        if (!o.writeCameraPath.empty())
-            files.push_back({several ? viewOutputPath(o.writeCameraPath, view) : o.writeCameraPath,
-                             camera.toJson().dump(2) + "\n",
-                             {}});
-        if (!o.snapshotDir.empty()) {
-            DiagnosticSnapshotRun run;
-            run.toolName = "contour-batch";
-            run.toolVersion = CONTOUR_VERSION;
-            run.meshPath = o.meshPath;
-            run.method = &method;
-            run.parameters = o.parameters;
-            run.camera = camera;
-            run.snapshots = runner->snapshots();
-            run.title = title;
-            run.session.meshPath = absoluteMesh;
-            run.session.method = method.name;
-            run.session.parameters = o.parameters;
-            run.session.camera = camera;
-            run.session.phaseReached = runner->completedPhases();
-            run.session.phaseName = runner->current().phaseName;
-            std::vector<std::string> notes;
-            PendingSnapshot snapshot;
-            std::string number = std::to_string(view);
-            if (view < 10)
-                number.insert(0, 1, '0');
-            snapshot.folder =
-                several ? (std::filesystem::path(o.snapshotDir) / ("view" + number)).string()
-                        : o.snapshotDir;
-            if (images->available()) {
-                try {
-                    snapshot.files = images->render(runner->current(), camera);
-                } catch (const std::exception& e) {
-                    throw BatchFailure(snapshot.folder + "/" + e.what());
-                }
-                run.otherFiles = {snapshotFiles::kPng3d, snapshotFiles::kPng2d};
-            }
-            for (SnapshotFile& file : diagnosticSnapshotFiles(run, &notes))
-                snapshot.files.push_back(std::move(file));
-            if (v == 0)
-                for (const std::string& note : notes)
-                    out << "  --snapshot-dir: " << note << "\n";
-            snapshots.push_back(std::move(snapshot));
-        }
-        if (!o.plyPath.empty()) {
-            const Snapshot& last = runner->current();
-            if (!last.mesh)
-                throw BatchFailure(o.plyPath + ": the snapshot after " + last.phaseName +
-                                   " has no mesh to write");
-            auto labels = std::make_shared<const SnapshotPlyLabels>(snapshotPlyLabels(last));
-            if (v == 0) // the same fields in every view
-                for (const std::string& skipped : labels->skipped)
-                    out << "  --ply leaves out field " << skipped << "\n";
-            files.push_back({several ? viewOutputPath(o.plyPath, view) : o.plyPath,
-                             {},
-                             [mesh = last.mesh, labels](const std::string& path) {
-                                 writePly(*mesh, path, labels->labels);
-                             }});
-        }
+        addViewOutputs(outputs, {camera, *runner, view, viewTitle(o, view, runner->current())},
+                       out);
     }
     if (!o.jsonPath.empty())
-        files.push_back({o.jsonPath, report.text(), {}});
+        outputs.pending.files.push_back({o.jsonPath, report.text(), {}});
 
-    std::vector<std::string> written;
-    std::vector<std::filesystem::path> createdFolders;
-    try {
-        for (const PendingFile& file : files) {
-            if (file.write)
-                file.write(file.path);
-            else
-                writeFileAtomically(file.path, file.content);
-            written.push_back(file.path);
-        }
-        for (const PendingSnapshot& snapshot : snapshots) {
-            // The snapshot folder (and a view's sub-folder) is made here, and
-            // removed again on failure.
-            for (const std::filesystem::path& folder :
-                 {std::filesystem::path(o.snapshotDir), std::filesystem::path(snapshot.folder)}) {
-                std::error_code error;
-                if (std::filesystem::create_directory(folder, error))
-                    createdFolders.push_back(folder);
-                else if (error)
-                    throw std::runtime_error(snapshot.folder + ": cannot create the folder (" +
-                                             error.message() + ")");
-            }
-            for (const std::string& path : writeSnapshotFiles(snapshot.folder, snapshot.files))
-                written.push_back(path);
-        }
-    } catch (const std::exception& e) {
-        // Leave no partial set of outputs behind either.
-        for (const std::string& path : written)
-            std::remove(path.c_str());
-        for (auto it = createdFolders.rbegin(); it != createdFolders.rend(); ++it) {
-            std::error_code ignored;
-            std::filesystem::remove(*it, ignored); // only if empty
-        }
-        throw BatchFailure(e.what());
-    }
-    printWritten(out, written);
-    if (o.strict && (violations > 0 || conflicts > 0)) {
-        out.flush();
-        if (violations > 0)
-            std::cerr << "contour-batch: --strict: " << violations
-                      << " post-conditions violated; first: " << firstViolation << "\n";
-        if (conflicts > 0)
-            std::cerr << "contour-batch: --strict: " << conflicts
-                      << " visibility conflicts (a ray test disagrees with exact propagation); "
-                         "first: "
-                      << firstConflict << "\n";
-        return 3;
-    }
-    return 0;
+    printWritten(out, writePendingOutputs(outputs.pending, o.snapshotDir));
+    return strictExitCode(o, findings, out);
 }
 
 } // namespace contour::batch

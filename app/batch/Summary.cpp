@@ -199,6 +199,13 @@ void printViewGraphTotals(std::ostream& out, const ViewGraph& graph) {
         << len.str() << " px\n";
 }
 
+void printMethodSummary(std::ostream& out, const MethodViewRun& run) {
+    if (!run.method.outputs.summaryLines)
+        return;
+    for (const std::string& line : run.method.outputs.summaryLines(run))
+        out << line << "\n";
+}
+
 void printWritten(std::ostream& out, const std::vector<std::string>& paths) {
     if (paths.empty())
         return;

@@ -24,6 +24,8 @@ void printViewTotals(std::ostream& out, const Snapshot& last, const Camera& came
 // Chains visible / hidden / simplified away, T-junctions, curtain folds, ray
 // tests, conflicts and the visible length in pixels.
 void printViewGraphTotals(std::ostream& out, const ViewGraph& graph);
+// The lines the method adds after a view's totals (MethodOutputs::summaryLines).
+void printMethodSummary(std::ostream& out, const MethodViewRun& run);
 void printWritten(std::ostream& out, const std::vector<std::string>& paths);
 
 } // namespace contour::batch

@@ -5,6 +5,7 @@
 #include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/ConsistentOutputs.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "visibility/SimplificationPhase.h"
 #include "visibility/VisibilityPhase.h"
@@ -158,6 +159,7 @@ Method makeConsistentContourMethod() {
              {"near-face-epsilon", 1.0},
          }},
     };
+    m.outputs = consistentOutputs();
     return m;
 }
 
