@@ -1,18 +1,15 @@
 #pragma once
-// The 3D view of a snapshot: the working mesh coloured by facing
-// (sceneColors::kFrontFace / kBackFace, kUnclassifiedFace before the facing
-// phase), by a face label field (the consistent method's VBO: F and B in the
-// facing colours, undefined in kUndefinedVbo) or by a signed scalar field of
-// the snapshot (g, radial, Gaussian or mean curvature: DivergingColorMap.h,
-// with a scalar bar), the curves drawn on top as thick lines, the overlays of
-// the consistent method (SceneOverlay) where the snapshot has their fields,
-// and the analysis camera's frustum when this view's own camera differs from
-// it. When the snapshot has a view graph (Snapshot::viewGraph) its chains
-// replace the raw curves: visible ones thick and bright, hidden ones thinner
-// and darker (depth-tested like the surface, so orbit to see them), chains
-// simplified away faint and optional, and the nodes as round dots coloured by
-// type (ViewGraphStyle.h): those on a visible chain drawn over everything,
-// those only on hidden chains depth-tested with the hidden chains.
+// The 3D view of a snapshot, composed of layers (widgets/scene/, one class
+// per kind of data, in the manner of 3D Slicer's displayable managers): the
+// working mesh coloured by facing, a face label field or a signed scalar
+// field with its scalar bar (MeshColoringLayer), the raw curves
+// (CurveLayer) or, when the snapshot has a view graph, its chains and nodes
+// (ViewGraphLayer), the consistent method's overlays (ConsistentOverlayLayer),
+// the control cage (CageLayer), the linked selection (HighlightLayer), the
+// analysis camera's frustum when this view's own camera differs from it
+// (FrustumLayer) and, while the camera moves, a decimated copy of a large
+// mesh (MotionCopyLayer). The view owns the renderers, the camera, picking
+// and the motion drawing; the API below is what the window and tests call.
 #include "DivergingColorMap.h"
 #include "MotionMesh.h"
 #include "SceneColors.h"

@@ -535,7 +535,7 @@ void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
 }
 
 void MainWindow::createDisplayDock() {
-    // Issue 6 layout: the overlay toggles and the legends in the right dock
+    // The overlay toggles and the legends in the right dock
     // under the inspector (the tool bars keep the toggles for quick access;
     // the actions are shared, so both stay in step).
     auto* dock = new QDockWidget(tr("Overlays and legends"), this);

@@ -128,15 +128,15 @@ public:
     void setViewLayout(ViewLayout layout);
     ViewLayout viewLayout() const;
 
-    // Method comparison (issue 6, item 4): a second method run on the same
+    // Method comparison: a second method run on the same
     // mesh and camera, its curves and the differences shown in the 2D view.
     // An empty name turns it off; false for a name that is not a method.
     bool setComparisonMethod(const QString& name);
     MethodComparison* methodComparison() const { return comparison_; }
     QComboBox* compareSelector() const { return compareSelector_; }
 
-    // Sessions, diagnostic snapshots, recent files, settings (issue 6 items
-    // 5-6; the logic is in SessionController and SnapshotExport). Each
+    // Sessions, diagnostic snapshots, recent files, settings (the
+    // logic is in SessionController and SnapshotExport). Each
     // returns false and shows why on failure.
     bool saveSession(const QString& path);
     bool openSession(const QString& path);
@@ -154,7 +154,7 @@ public:
     SessionController* sessionController() const { return sessions_; }
     QAction* cancelAction() const { return cancelAction_; }
 
-    // Linked selection and the inspector (issue 6, item 3; the logic is in
+    // Linked selection and the inspector (the logic is in
     // SelectionController): the right dock's inspector, the selection shared
     // by both views, and View › Next inconsistent face (N).
     Inspector* inspector() const { return inspector_; }
@@ -183,7 +183,7 @@ protected:
 
 private:
     void createActions();
-    // The inspector dock, the selection and its actions (issue 6, item 3).
+    // The inspector dock, the selection and its actions.
     void createSelection();
     void createLayout();
     void openFileDialog();
@@ -244,11 +244,11 @@ private:
     QAction* resetAction_ = nullptr;
     QAction* cameraFromViewAction_ = nullptr;
     QAction* viewToCameraAction_ = nullptr;
-    // Sessions, snapshots, recent files, settings, About, Cancel (issue 6).
+    // Sessions, snapshots, recent files, settings, About, Cancel.
     SessionController* sessions_ = nullptr;
     QAction* cancelAction_ = nullptr;
     bool restoring_ = false; // restoreRun: rebuildRunner waits for the last call
-    // Linked selection and the inspector (issue 6, item 3).
+    // Linked selection and the inspector.
     Inspector* inspector_ = nullptr;
     SelectionController* selection_ = nullptr;
     QAction* nextInconsistentAction_ = nullptr;
