@@ -40,6 +40,7 @@ SymmetricRange symmetricRange(std::span<const double> values, double quantile) {
 }
 
 void fillDivergingLookupTable(vtkLookupTable* table, double halfWidth) {
+    loadSceneColors(); // the map's colours: resources/colormaps/diverging.json
     const double m = halfWidth > 0.0 && std::isfinite(halfWidth) ? halfWidth : 1.0;
     vtkNew<vtkColorTransferFunction> map;
     map->SetColorSpaceToDiverging();

@@ -5,7 +5,8 @@
 // [-m, m], where m is a robust maximum of |value| so that one huge value near
 // an extraordinary vertex does not wash the rest out. Values beyond the range
 // take the end colours; NaN (radial curvature where it is undefined) is drawn
-// sceneColors::kNanValue.
+// sceneColors::kNanValue. The end and NaN colours are read from
+// resources/colormaps/diverging.json (SceneColors.h).
 #include <span>
 #include <vtkSmartPointer.h>
 

@@ -83,6 +83,7 @@ void drawGlyph(QPainter& painter, const QPointF& c, NodeGlyph glyph, const QColo
 } // namespace
 
 ImageView2D::ImageView2D(QWidget* parent) : QWidget(parent) {
+    loadSceneColors();
     setAttribute(Qt::WA_OpaquePaintEvent);
     setAutoFillBackground(false);
 }

@@ -66,7 +66,7 @@ public:
     // The legend's box in widget coordinates (empty without a view graph).
     QRectF legendRect() const;
 
-    // Comparison with a second method (issue 6, item 4; the caller computes
+    // Comparison with a second method (the caller computes
     // the difference with compareCurves): the other method's drawn curves
     // thin on top, the parts only one method draws highlighted underneath,
     // and a caption with the lengths. Kept until cleared or replaced.

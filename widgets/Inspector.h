@@ -1,5 +1,5 @@
 #pragma once
-// The inspector (issue 6, item 3): what the snapshot says about the selected
+// The inspector: what the snapshot says about the selected
 // face, vertex, edge or view-graph chain, read from its fields (FieldNames.h)
 // and its view graph; nothing is recomputed. A face shows its vertices and
 // their labels, facing against its vertex-based orientation (Bénard 2014,

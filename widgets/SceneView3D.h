@@ -1,18 +1,15 @@
 #pragma once
-// The 3D view of a snapshot: the working mesh coloured by facing
-// (sceneColors::kFrontFace / kBackFace, kUnclassifiedFace before the facing
-// phase), by a face label field (the consistent method's VBO: F and B in the
-// facing colours, undefined in kUndefinedVbo) or by a signed scalar field of
-// the snapshot (g, radial, Gaussian or mean curvature: DivergingColorMap.h,
-// with a scalar bar), the curves drawn on top as thick lines, the overlays of
-// the consistent method (SceneOverlay) where the snapshot has their fields,
-// and the analysis camera's frustum when this view's own camera differs from
-// it. When the snapshot has a view graph (Snapshot::viewGraph) its chains
-// replace the raw curves: visible ones thick and bright, hidden ones thinner
-// and darker (depth-tested like the surface, so orbit to see them), chains
-// simplified away faint and optional, and the nodes as round dots coloured by
-// type (ViewGraphStyle.h): those on a visible chain drawn over everything,
-// those only on hidden chains depth-tested with the hidden chains.
+// The 3D view of a snapshot, composed of layers (widgets/scene/, one class
+// per kind of data, in the manner of 3D Slicer's displayable managers): the
+// working mesh coloured by facing, a face label field or a signed scalar
+// field with its scalar bar (MeshColoringLayer), the raw curves
+// (CurveLayer) or, when the snapshot has a view graph, its chains and nodes
+// (ViewGraphLayer), the consistent method's overlays (ConsistentOverlayLayer),
+// the control cage (CageLayer), the linked selection (HighlightLayer), the
+// analysis camera's frustum when this view's own camera differs from it
+// (FrustumLayer) and, while the camera moves, a decimated copy of a large
+// mesh (MotionCopyLayer). The view owns the renderers, the camera, picking
+// and the motion drawing; the API below is what the window and tests call.
 #include "DivergingColorMap.h"
 #include "MotionMesh.h"
 #include "SceneColors.h"
@@ -22,6 +19,14 @@
 #include "camera/Camera.h"
 #include "pipeline/FieldNames.h"
 #include "pipeline/Snapshot.h"
+#include "scene/CageLayer.h"
+#include "scene/ConsistentOverlayLayer.h"
+#include "scene/CurveLayer.h"
+#include "scene/FrustumLayer.h"
+#include "scene/HighlightLayer.h"
+#include "scene/MeshColoringLayer.h"
+#include "scene/MotionCopyLayer.h"
+#include "scene/ViewGraphLayer.h"
 
 #include <QRect>
 #include <QThreadPool>
@@ -30,26 +35,16 @@
 #include <optional>
 #include <string>
 #include <vector>
-#include <vtkActor.h>
-#include <vtkLookupTable.h>
 #include <vtkNew.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkScalarBarActor.h>
-#include <vtkSmartPointer.h>
+#include <vtkRenderer.h>
 
 class QTimer;
 class vtkPolyData;
+class vtkProperty;
 
 namespace contour {
 
-// What the view can draw over the mesh from the consistent method's fields
-// (Bénard 2014), each a toggle: the outlines of inconsistent faces
-// (fields::kConsistent == 0, drawn over everything), translucent tints of
-// radial and standard radial triangles, the contour (C) vertices
-// (fields::kLabel == 0), the cusps (fields::kCusp, larger squares, drawn over
-// everything) and the radial edges (fields::kRadialEdge).
-enum class SceneOverlay { InconsistentFaces, RadialFaces, ContourVertices, Cusps, RadialEdges };
-inline constexpr int kSceneOverlayCount = 5;
+// SceneOverlay and kSceneOverlayCount: scene/ConsistentOverlayLayer.h.
 
 class SceneView3D : public VtkOpenGLWidget {
     Q_OBJECT
@@ -68,9 +63,9 @@ public:
     // The snapshot shown (empty after clearScene()).
     const Snapshot& snapshot() const { return snapshot_; }
     // Whether the faces are currently coloured from a facing field.
-    bool showsFacing() const { return showsFacing_; }
+    bool showsFacing() const { return coloring_.showsFacing(); }
     // Whether they are coloured by a face label field (labelFields()).
-    bool showsFaceLabels() const { return showsLabels_; }
+    bool showsFaceLabels() const { return coloring_.showsFaceLabels(); }
 
     // What to colour the mesh by: fields::kFacing (front/back), a face label
     // field (fields::kVbo, faceLabelFieldNames in SnapshotToVtk.h) or the name
@@ -80,24 +75,24 @@ public:
     // snapshot has it (stepping back to the input and forward again, or a
     // re-run after a parameter change, keeps the choice).
     void setColorField(const std::string& field);
-    const std::string& colorField() const { return colorField_; }
+    const std::string& colorField() const { return coloring_.colorField(); }
     // fields::kFacing or the label or scalar field actually shown.
-    const std::string& displayedColorField() const { return displayedField_; }
+    const std::string& displayedColorField() const { return coloring_.displayedColorField(); }
     // The face label fields and the scalar fields of the current snapshot,
     // in selector order.
-    const std::vector<std::string>& labelFields() const { return labelFields_; }
-    const std::vector<std::string>& scalarFields() const { return scalarFields_; }
-    bool showsScalarField() const { return showsScalar_; }
+    const std::vector<std::string>& labelFields() const { return coloring_.labelFields(); }
+    const std::vector<std::string>& scalarFields() const { return coloring_.scalarFields(); }
+    bool showsScalarField() const { return coloring_.showsScalarField(); }
     // The range of the diverging map of the shown scalar field.
-    const SymmetricRange& scalarRange() const { return scalarRange_; }
+    const SymmetricRange& scalarRange() const { return coloring_.scalarRange(); }
     bool isScalarBarVisible() const;
     std::string scalarBarTitle() const;
     // The scalar bar's box (bar, labels and title) in the grabbed image's
     // device pixels, top-left origin; empty when the bar is hidden.
     QRect scalarBarRect() const;
-    int curveCount() const { return curveCount_; }
+    int curveCount() const { return curves_.curveCount(); }
     // Whether the mesh is shaded with the smooth surface's normals.
-    bool hasSmoothShading() const { return static_cast<bool>(shownNormals_); }
+    bool hasSmoothShading() const { return coloring_.hasSmoothShading(); }
     // Triangles in the VTK data shown for the mesh (0 when none).
     long long displayedFaceCount() const;
 
@@ -115,15 +110,15 @@ public:
 
     // View graph display: choices kept across snapshots, applied when the
     // snapshot has a view graph.
-    bool hasViewGraph() const { return static_cast<bool>(graph_); }
+    bool hasViewGraph() const { return viewGraph_.hasViewGraph(); }
     void setShowHiddenCurves(bool show);
-    bool showsHiddenCurves() const { return showHidden_; }
+    bool showsHiddenCurves() const { return viewGraph_.showsHiddenCurves(); }
     void setShowSimplifiedCurves(bool show);
-    bool showsSimplifiedCurves() const { return showSimplified_; }
+    bool showsSimplifiedCurves() const { return viewGraph_.showsSimplifiedCurves(); }
     void setShowViewGraphNodes(bool show);
-    bool showsViewGraphNodes() const { return showNodes_; }
+    bool showsViewGraphNodes() const { return viewGraph_.showsNodes(); }
     void setChainColoring(ChainColoring coloring);
-    ChainColoring chainColoring() const { return coloring_; }
+    ChainColoring chainColoring() const { return viewGraph_.chainColoring(); }
     // Chains in `state` drawn now (0 when that layer is off or there is no
     // view graph), node dots drawn now (both kinds), and their VTK data
     // (null without a view graph): the nodes on a visible chain, or with
@@ -136,7 +131,7 @@ public:
     // The camera the method runs with; drawn as a frustum when it differs
     // from this view's camera.
     void setAnalysisCamera(const Camera& camera);
-    const std::optional<Camera>& analysisCamera() const { return analysisCamera_; }
+    const std::optional<Camera>& analysisCamera() const { return frustum_.analysisCamera(); }
 
     // Sets this view's VTK camera from an analysis camera.
     void setViewCamera(const Camera& camera);
@@ -160,7 +155,7 @@ public:
     // Draws the selected element over everything in sceneColors::kSelection:
     // a face's outline, a vertex's dot, an edge, or a view-graph chain.
     void setHighlight(const Selection& selection);
-    const Selection& highlight() const { return highlight_; }
+    const Selection& highlight() const { return highlight_.selection(); }
     // The highlight's VTK data (null when nothing is drawn).
     vtkPolyData* highlightData() const;
     // Zooms this view's camera onto the face, keeping its viewing direction
@@ -201,7 +196,7 @@ public:
     double levelOfDetailSeconds() const;
     // The control cage (Snapshot::cage) as a wireframe, off by default.
     void setShowControlCage(bool show);
-    bool showsControlCage() const { return showCage_; }
+    bool showsControlCage() const { return cage_.isShown(); }
     // Cage edges drawn (0 while hidden or without a cage).
     long long controlCageEdgesShown() const;
     // True when this view's camera shows the analysis camera's view.
@@ -228,36 +223,34 @@ protected:
     void mouseReleaseEvent(QMouseEvent* event) override;
 
 private:
-    void updateFrustum();
-    // Applies colorField_ to the current snapshot's mesh.
-    void updateColoring();
-    // Converts the current snapshot's overlay fields and shows the enabled
-    // ones.
-    void updateOverlays();
-    void updateOverlayVisibility();
-    // Converts the snapshot's view graph when it changed and shows the
-    // chosen layers; recolourViewGraph() sets the colours.
-    void updateViewGraph();
-    void recolourViewGraph();
-    void updateViewGraphVisibility();
-    // Converts highlight_ for the current snapshot.
-    void updateHighlight();
+    // The layers' state after a change of the colouring: the curves and the
+    // chains coloured by QI follow it (black over a scalar field).
+    void syncContrast();
+    // Level of detail while moving (setLevelOfDetail). meshShown() says
+    // whether a mesh is displayed, by the full actor or by the copy.
+    bool meshShown() const { return coloring_.meshData() != nullptr; }
+    void requestMotionMesh();
+    bool motionMeshWanted() const;
+    // Shows the copy or the full mesh, as motion drawing asks.
+    void updateMeshLevel();
+    void onInteraction(vtkObject* caller, unsigned long eventId, void* callData);
 
-    vtkNew<vtkPolyDataMapper> meshMapper_;
-    vtkNew<vtkActor> meshActor_;
-    vtkNew<vtkLookupTable> facingColors_;
-    vtkNew<vtkPolyDataMapper> curveMapper_;
-    vtkNew<vtkActor> curveActor_;
-    vtkNew<vtkLookupTable> curveColors_;
-    vtkNew<vtkLookupTable> curveColorsOverField_;
-    vtkNew<vtkLookupTable> fieldColors_;
-    vtkNew<vtkScalarBarActor> scalarBar_;
-    vtkNew<vtkPolyDataMapper> frustumMapper_;
-    vtkNew<vtkActor> frustumActor_;
-    vtkNew<vtkPolyDataMapper> cageMapper_;
-    vtkNew<vtkActor> cageActor_;
+    // The layers, in drawing order (SceneLayer.h).
+    MeshColoringLayer coloring_;
+    MotionCopyLayer motionCopy_;
+    CurveLayer curves_;
+    ConsistentOverlayLayer overlays_;
+    ViewGraphLayer viewGraph_;
+    HighlightLayer highlight_;
+    CageLayer cage_;
+    FrustumLayer frustum_;
+    // Layer 1 over the scene, sharing its camera: what is drawn over
+    // everything (inconsistent outlines, cusps, nodes on visible chains, the
+    // highlight).
+    vtkNew<vtkRenderer> overlayRenderer_;
+
     struct SavedStyle {
-        vtkProperty* property; // owned by its actor, which the view keeps
+        vtkProperty* property; // owned by its actor, which a layer keeps
         float lineWidth;
         float pointSize;
         bool spheres;
@@ -265,18 +258,6 @@ private:
     std::vector<SavedStyle> stillStyles_; // while motionDrawing_
     bool motionDrawing_ = false;
     std::array<unsigned long, 2> interactionObservers_{};
-    // Level of detail while moving (setLevelOfDetail). meshShown() says
-    // whether a mesh is displayed, by the full actor or by the copy.
-    bool meshShown() const { return static_cast<bool>(meshData_); }
-    void requestMotionMesh();
-    // Shows the copy or the full mesh, as motion drawing asks.
-    void updateMeshLevel();
-    // Colours the copy's triangles from the current colouring.
-    void recolourMotionMesh();
-    vtkNew<vtkPolyDataMapper> lodMapper_;
-    vtkNew<vtkActor> lodActor_;
-    MotionMesh lod_;
-    std::shared_ptr<const TriangleMesh> lodMesh_;    // the mesh lod_ stands for
     std::shared_ptr<const TriangleMesh> lodPending_; // the mesh being decimated
     QThreadPool lodPool_;
     QTimer* lodTimer_ = nullptr;
@@ -285,66 +266,11 @@ private:
     // copy only then.
     unsigned long colourStamp_ = 0;
     unsigned long lodColourStamp_ = 0;
-    void onInteraction(vtkObject* caller, unsigned long eventId, void* callData);
-    std::shared_ptr<const PolygonMesh> shownCage_;
-    bool showCage_ = false;
-    vtkNew<vtkLookupTable> labelColors_;
-
-    struct OverlayLayer {
-        vtkNew<vtkPolyDataMapper> mapper;
-        vtkNew<vtkActor> actor;
-        vtkSmartPointer<vtkPolyData> data; // null when not available
-        bool enabled = true;
-    };
-    std::array<OverlayLayer, kSceneOverlayCount> overlays_;
-    vtkNew<vtkLookupTable> radialColors_;
-    // Layer 1 over the scene, sharing its camera: what is drawn over
-    // everything (inconsistent outlines, cusps).
-    vtkNew<vtkRenderer> overlayRenderer_;
-
-    // View graph layers: visible, hidden, simplified chains (ChainState
-    // order); the nodes on a visible chain (on the overlay renderer) and
-    // the hidden ones (on the scene, depth-tested).
-    struct ViewGraphLayer {
-        vtkNew<vtkPolyDataMapper> mapper;
-        vtkNew<vtkActor> actor;
-        vtkSmartPointer<vtkPolyData> data; // null without a view graph
-    };
-    std::array<ViewGraphLayer, 3> chainLayers_;
-    std::array<ViewGraphLayer, 2> nodeLayers_; // [0] on a visible chain, [1] hidden
-    std::shared_ptr<const ViewGraph> graph_;
-    bool showHidden_ = true;
-    bool showSimplified_ = false;
-    bool showNodes_ = true;
-    ChainColoring coloring_ = ChainColoring::ByQi;
 
     std::shared_ptr<const TriangleMesh> mesh_;
     Snapshot snapshot_;
-    std::string colorField_ = fields::kFacing;
-    std::string displayedField_ = fields::kFacing;
-    std::vector<std::string> scalarFields_;
-    std::vector<std::string> labelFields_;
-    // The field whose values are in meshData_ (to skip converting it again).
-    std::shared_ptr<const Field> shownFieldValues_;
-    std::string shownArrayName_;
-    // The smooth surface's normals in meshData_, if any.
-    std::shared_ptr<const Field> shownNormals_;
-    SymmetricRange scalarRange_;
-    vtkSmartPointer<vtkPolyData> meshData_;
-    std::shared_ptr<const std::vector<Polyline>> curves_;
-    std::optional<Camera> analysisCamera_;
-    bool showsFacing_ = false;
-    bool showsLabels_ = false;
-    bool showsScalar_ = false;
-    int curveCount_ = 0;
     bool lastMatch_ = true;
-
-    // Linked selection: the highlight (on the overlay renderer) and the
-    // press that may become a click.
-    Selection highlight_;
-    vtkSmartPointer<vtkPolyData> highlightData_;
-    vtkNew<vtkPolyDataMapper> highlightMapper_;
-    vtkNew<vtkActor> highlightActor_;
+    // The press that may become a click.
     QPointF pressPosition_;
     bool leftPressed_ = false;
 };

@@ -1,5 +1,5 @@
 #pragma once
-// Linked selection (issue 6, item 3): what the user selected in the current
+// Linked selection: what the user selected in the current
 // snapshot, shared by the 3D view, the 2D view and the inspector. An element
 // is named by its index in the snapshot: a face or vertex of Snapshot::mesh,
 // an edge of the mesh (TriangleMesh edge order, the order of edge fields), or
@@ -7,8 +7,8 @@
 // selection "survives" a step when the index still exists (phases that split,
 // flip or compact the mesh may give it another element: the inspector always
 // shows what the index names now).
-#include "mesh/TriangleMesh.h"
 #include "core/Types.h"
+#include "mesh/TriangleMesh.h"
 
 #include <QObject>
 #include <QString>

@@ -7,6 +7,7 @@
 #include "MethodComparison.h"
 #include "MethodPanel.h"
 #include "PhaseStepper.h"
+#include "Resources.h"
 #include "SceneColors.h"
 #include "SceneView3D.h"
 #include "SelectionController.h"
@@ -44,16 +45,14 @@
 #include <QTimer>
 #include <QToolBar>
 #include <QVBoxLayout>
-#include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
 
 namespace contour {
 
 namespace {
 
-// The "3/4 view" the analysis camera starts from: right, above, in front.
-const Vec3 kInitialViewDirection(0.55, 0.45, 1.0);
-const Viewport kFallbackViewport{800, 600};
+// Layout names as in session files (SessionController), ViewLayout order.
+const std::array<const char*, 3> kLayoutNames{"both", "3d-only", "2d-only"};
 
 // A legend entry: a square of `color` and its meaning, as rich text.
 QString swatch(const SceneColor& color, const QString& text) {
@@ -179,18 +178,29 @@ QIcon viewGraphIcon(MainWindow::ViewGraphToggle toggle) {
 
 } // namespace
 
-MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent), defaults_(WorkbenchDefaults::load()) {
     setWindowTitle(tr("Contour Workbench"));
+    setWindowIcon(resourceIcon(QStringLiteral("contour-workbench")));
     setAcceptDrops(true);
+    run_ = new RunController(this);
     createLayout();
     createActions();
     createSelection();
     createDisplayDock();
-    connect(&watcher_, &QFutureWatcher<JobResult>::finished, this, &MainWindow::onJobFinished);
+    connect(run_, &RunController::snapshotReady, this, &MainWindow::showRunnerState);
+    connect(run_, &RunController::busyChanged, this, &MainWindow::onBusyChanged);
+    connect(run_, &RunController::progress, this, &MainWindow::onProgress);
+    connect(run_, &RunController::failed, this, &MainWindow::showError);
+    connect(run_, &RunController::cancelled, this,
+            [this] { statusBar()->showMessage(tr("Cancelled"), 3000); });
+    connect(run_, &RunController::idle, this, &MainWindow::onRunIdle);
+    if (methodPanel_->methodName() != defaults_.method)
+        methodPanel_->setMethod(defaults_.method);
     connect(methodPanel_, &MethodPanel::methodChanged, this, [this] { rebuildRunner(-1); });
     // New parameters: run again up to the phase reached (or being run to).
     connect(methodPanel_, &MethodPanel::parametersChanged, this,
-            [this] { rebuildRunner(runner_ ? reachedPhases() : -1); });
+            [this] { rebuildRunner(run_->hasRunner() ? run_->reachedPhases() : -1); });
     connect(stepper_, &PhaseStepper::stepRequested, this, &MainWindow::stepPhase);
     connect(stepper_, &PhaseStepper::backRequested, this, &MainWindow::stepBack);
     connect(stepper_, &PhaseStepper::resetRequested, this, &MainWindow::resetPhases);
@@ -204,16 +214,22 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     connect(colorSelector_, &QComboBox::currentIndexChanged, this, &MainWindow::onColorSelected);
     connect(colorSelector_, &QComboBox::activated, this, &MainWindow::onColorSelected);
     connect(comparison_, &MethodComparison::changed, this, &MainWindow::updateComparison);
+    sceneView_->setColorField(defaults_.colourBy.toStdString());
     updateColorSelector();
     updateOverlayActions();
     stepper_->setMethod(methodPanel_->method());
+    for (std::size_t i = 1; i < kLayoutNames.size(); ++i)
+        if (defaults_.layout == QLatin1String(kLayoutNames[i]))
+            setViewLayout(static_cast<ViewLayout>(i));
     updateActions();
     updateStatus();
-    resize(1400, 850);
+    resize(defaults_.windowSize);
 }
 
 MainWindow::~MainWindow() {
-    cancelAndWait();
+    // The views are going away: stop the job without showing its end.
+    run_->disconnect(this);
+    run_->cancelAndWait();
 }
 
 // ------------------------------------------- linked selection, inspector
@@ -236,7 +252,8 @@ void MainWindow::createSelection() {
     });
     connect(selection_, &SelectionController::message, this,
             [this](const QString& text) { statusBar()->showMessage(text, 6000); });
-    nextInconsistentAction_ = new QAction(tr("&Next inconsistent face"), this);
+    nextInconsistentAction_ = new QAction(resourceIcon(QStringLiteral("next-inconsistent")),
+                                          tr("&Next inconsistent face"), this);
     nextInconsistentAction_->setObjectName(QStringLiteral("nextInconsistentFace"));
     nextInconsistentAction_->setShortcut(Qt::Key_N);
     nextInconsistentAction_->setToolTip(
@@ -244,7 +261,9 @@ void MainWindow::createSelection() {
            "it; the analysis camera stays (N)"));
     connect(nextInconsistentAction_, &QAction::triggered, selection_,
             &SelectionController::selectNextInconsistentFace);
-    QAction* clear = new QAction(tr("C&lear selection"), this);
+    QAction* clear =
+        new QAction(resourceIcon(QStringLiteral("clear-selection")), tr("C&lear selection"), this);
+    clear->setObjectName(QStringLiteral("clearSelection"));
     connect(clear, &QAction::triggered, selection_, &SelectionController::clear);
     QMenu* menu = menuBar()->addMenu(tr("&Selection"));
     menu->addAction(nextInconsistentAction_);
@@ -315,8 +334,12 @@ void MainWindow::createActions() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     openAction_ = file->addAction(tr("&Open mesh…"), this, &MainWindow::openFileDialog);
     openAction_->setShortcut(QKeySequence::Open);
+    openAction_->setObjectName(QStringLiteral("openMesh"));
+    openAction_->setIcon(resourceIcon(QStringLiteral("open")));
     QAction* quitSeparator = file->addSeparator();
     QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
+    quit->setObjectName(QStringLiteral("quit"));
+    quit->setIcon(resourceIcon(QStringLiteral("quit")));
     quit->setShortcut(QKeySequence::Quit);
     // Sessions, diagnostic snapshot export, recent files (SessionController).
     sessions_ = new SessionController(this);
@@ -324,18 +347,28 @@ void MainWindow::createActions() {
 
     QMenu* run = menuBar()->addMenu(tr("&Run"));
     stepAction_ = run->addAction(tr("&Step"), this, &MainWindow::stepPhase);
+    stepAction_->setObjectName(QStringLiteral("step"));
+    stepAction_->setIcon(resourceIcon(QStringLiteral("step")));
     stepAction_->setShortcut(Qt::Key_F10);
     stepAction_->setToolTip(tr("Run the next phase (F10)"));
     backAction_ = run->addAction(tr("&Back"), this, &MainWindow::stepBack);
+    backAction_->setObjectName(QStringLiteral("back"));
+    backAction_->setIcon(resourceIcon(QStringLiteral("back")));
     backAction_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F10));
     backAction_->setToolTip(tr("Drop the last phase result (Shift+F10)"));
     runAction_ = run->addAction(tr("Run to &end"), this, &MainWindow::runToEnd);
+    runAction_->setObjectName(QStringLiteral("runToEnd"));
+    runAction_->setIcon(resourceIcon(QStringLiteral("run-to-end")));
     runAction_->setShortcut(Qt::Key_F5);
     runAction_->setToolTip(tr("Run every remaining phase (F5)"));
     resetAction_ = run->addAction(tr("&Reset"), this, &MainWindow::resetPhases);
+    resetAction_->setObjectName(QStringLiteral("reset"));
+    resetAction_->setIcon(resourceIcon(QStringLiteral("reset")));
     resetAction_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
     resetAction_->setToolTip(tr("Return to the input (Shift+F5)"));
     cancelAction_ = run->addAction(tr("&Cancel"), this, &MainWindow::cancelPhases);
+    cancelAction_->setObjectName(QStringLiteral("cancel"));
+    cancelAction_->setIcon(resourceIcon(QStringLiteral("cancel")));
     cancelAction_->setShortcut(Qt::Key_Escape);
     cancelAction_->setToolTip(tr("Stop the running phase; the last finished one stays (Esc)"));
 
@@ -343,25 +376,35 @@ void MainWindow::createActions() {
     viewMenu_ = view;
     cameraFromViewAction_ = view->addAction(tr("Set analysis &camera from this view"), this,
                                             &MainWindow::setAnalysisCameraFromView);
+    cameraFromViewAction_->setObjectName(QStringLiteral("cameraFromView"));
+    cameraFromViewAction_->setIcon(resourceIcon(QStringLiteral("camera-from-view")));
     cameraFromViewAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_K));
     cameraFromViewAction_->setToolTip(
         tr("Use the 3D view's camera as the analysis camera and run the phases again (Ctrl+K)"));
     viewToCameraAction_ = view->addAction(tr("&Look through the analysis camera"), this,
                                           &MainWindow::resetViewToAnalysisCamera);
+    viewToCameraAction_->setObjectName(QStringLiteral("lookThroughCamera"));
+    viewToCameraAction_->setIcon(resourceIcon(QStringLiteral("look-through-camera")));
     viewToCameraAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
     view->addSeparator();
     cageAction_ = view->addAction(tr("Control &cage"));
+    cageAction_->setObjectName(QStringLiteral("controlCage"));
+    cageAction_->setIcon(resourceIcon(QStringLiteral("control-cage")));
     cageAction_->setCheckable(true);
     cageAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_C));
     cageAction_->setToolTip(tr("Draw the control cage as a wireframe in the 3D view"));
     connect(cageAction_, &QAction::toggled, sceneView_, &SceneView3D::setShowControlCage);
+    cageAction_->setChecked(defaults_.toggle("overlay.control-cage", false));
     auto* layouts = new QActionGroup(this);
     const std::array<std::pair<QString, Qt::Key>, 3> layoutNames{
         {{tr("&Both views"), Qt::Key_0},
          {tr("&3D view only"), Qt::Key_1},
          {tr("&2D view only"), Qt::Key_2}}};
+    const std::array<const char*, 3> layoutIcons{"layout-both", "layout-3d", "layout-2d"};
     for (std::size_t i = 0; i < layoutNames.size(); ++i) {
         QAction* a = view->addAction(layoutNames[i].first);
+        a->setIcon(resourceIcon(QString::fromLatin1(layoutIcons[i])));
+        a->setObjectName(QString::fromLatin1(layoutIcons[i]));
         a->setCheckable(true);
         a->setShortcut(QKeySequence(Qt::CTRL | layoutNames[i].second));
         layouts->addAction(a);
@@ -411,7 +454,10 @@ void MainWindow::createActions() {
     createOverlayActions(view);
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
-    help->addAction(tr("&About Contour Workbench…"), this, [this] { showAboutDialog(this); });
+    QAction* about =
+        help->addAction(tr("&About Contour Workbench…"), this, [this] { showAboutDialog(this); });
+    about->setObjectName(QStringLiteral("about"));
+    about->setIcon(resourceIcon(QStringLiteral("about")));
 }
 
 void MainWindow::createOverlayActions(QMenu* viewMenu) {
@@ -429,6 +475,8 @@ void MainWindow::createOverlayActions(QMenu* viewMenu) {
         const SceneOverlay overlay = info.overlay;
         connect(action, &QAction::toggled, this,
                 [this, overlay](bool on) { sceneView_->setOverlayEnabled(overlay, on); });
+        action->setChecked(defaults_.toggle(
+            SessionController::overlayKey(static_cast<int>(overlay)).toStdString(), true));
         overlayActions_[static_cast<int>(overlay)] = action;
         overlayBar_->addAction(action);
         menu->addAction(action);
@@ -470,7 +518,10 @@ void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
             }
             updateViewGraphLegend();
         });
-        // The views' own defaults are the actions' (info.checked).
+        // The views' own defaults are info.checked; the defaults file may
+        // change them through the action.
+        action->setChecked(
+            defaults_.toggle(SessionController::viewGraphKey(i).toStdString(), info.checked));
         viewGraphActions_[static_cast<size_t>(i)] = action;
         overlayBar_->addAction(action);
         overlayMenu->addAction(action);
@@ -484,7 +535,7 @@ void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
 }
 
 void MainWindow::createDisplayDock() {
-    // Issue 6 layout: the overlay toggles and the legends in the right dock
+    // The overlay toggles and the legends in the right dock
     // under the inspector (the tool bars keep the toggles for quick access;
     // the actions are shared, so both stay in step).
     auto* dock = new QDockWidget(tr("Overlays and legends"), this);
@@ -630,19 +681,18 @@ bool MainWindow::setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString&
         showError(tr("Cannot open mesh"), tr("%1: the mesh has no faces").arg(name));
         return false;
     }
-    cancelAndWait();
-    runner_.reset();
     cage_ = std::move(mesh);
-    input_ = std::move(input);
+    run_->setInput(std::move(input));
     meshName_ = name;
 
-    Viewport viewport = kFallbackViewport;
+    Viewport viewport = defaults_.fallbackViewport;
     const double ratio = sceneView_->devicePixelRatioF();
     if (sceneView_->isVisible() && sceneView_->width() >= 16 && sceneView_->height() >= 16)
         viewport = {static_cast<int>(sceneView_->width() * ratio),
                     static_cast<int>(sceneView_->height() * ratio)};
-    camera_ = Camera::framing(box, kInitialViewDirection, viewport);
-    sceneView_->setViewCamera(*camera_);
+    const Camera camera = Camera::framing(box, defaults_.viewDirection, viewport);
+    run_->setCamera(camera);
+    sceneView_->setViewCamera(camera);
     setWindowTitle(tr("%1 — Contour Workbench").arg(QFileInfo(name).fileName()));
     lastError_.clear();
     statusBar()->clearMessage();
@@ -661,224 +711,100 @@ bool MainWindow::setMethod(const QString& name) {
 }
 
 void MainWindow::rebuildRunner(int completed) {
-    cancelAndWait();
-    runner_.reset();
+    run_->setMethod(methodPanel_->method());
+    run_->setParameters(methodPanel_->parameters());
     if (restoring_)
         return; // restoreRun() rebuilds once, at the end
-    comparison_->setPrimary(input_, camera_, methodPanel_->parameters());
-    const Method* method = methodPanel_->method();
-    stepper_->setMethod(method);
-    if (!method || !input_ || !camera_) {
-        showRunnerState();
-        updateActions();
-        updateStatus();
-        return;
-    }
-    try {
-        runner_ = std::make_unique<Runner>(*method, *input_, *camera_, methodPanel_->parameters());
-    } catch (const std::exception& e) {
-        showError(tr("Cannot run %1").arg(QString::fromStdString(method->label)),
-                  QString::fromStdString(e.what()));
-        showRunnerState();
-        updateActions();
-        updateStatus();
-        return;
-    }
-    showRunnerState();
-    const int target =
-        completed < 0 ? runner_->phaseCount() : std::min(completed, runner_->phaseCount());
-    if (target > 0)
-        runToPhase(target);
-    else {
-        updateActions();
-        updateStatus();
-    }
+    comparison_->setPrimary(run_->input(), run_->camera(), methodPanel_->parameters());
+    stepper_->setMethod(methodPanel_->method());
+    run_->restart(completed);
+    updateActions();
+    updateStatus();
 }
 
 void MainWindow::stepPhase() {
-    if (busy_ || !runner_ || runner_->atEnd())
-        return;
-    runToPhase(runner_->completedPhases() + 1);
+    run_->step();
 }
 
 void MainWindow::runToEnd() {
-    if (busy_ || !runner_)
-        return;
-    runToPhase(runner_->phaseCount());
+    run_->runToEnd();
 }
 
 void MainWindow::runToPhase(int completed) {
-    if (busy_ || !runner_)
-        return;
-    completed = std::clamp(completed, 0, runner_->phaseCount());
-    if (completed <= runner_->completedPhases()) {
-        while (runner_->completedPhases() > completed)
-            runner_->back();
-        showRunnerState();
-        updateActions();
-        updateStatus();
-        return;
-    }
-    const QString what = completed == runner_->completedPhases() + 1
-                             ? tr("Running phase %1").arg(completed)
-                             : tr("Running to phase %1").arg(completed);
-    targetPhases_ = completed;
-    startJob(
-        [this, completed](Runner& runner, const std::function<void(int)>& phaseStarted) {
-            while (runner.completedPhases() < completed) {
-                if (cancelRequested_)
-                    throw PhaseCancelled();
-                phaseStarted(runner.completedPhases());
-                runner.step();
-            }
-        },
-        what);
+    run_->runTo(completed);
 }
 
 void MainWindow::stepBack() {
-    if (busy_ || !runner_)
-        return;
-    runner_->back();
-    targetPhases_ = runner_->completedPhases();
-    showRunnerState();
-    updateActions();
-    updateStatus();
+    run_->back();
 }
 
 void MainWindow::resetPhases() {
-    if (busy_ || !runner_)
-        return;
-    runner_->reset();
-    targetPhases_ = 0;
-    showRunnerState();
-    updateActions();
-    updateStatus();
+    run_->reset();
 }
 
 void MainWindow::setAnalysisCameraFromView() {
-    if (!input_)
+    if (!run_->input())
         return;
-    const int reached = runner_ ? reachedPhases() : -1;
+    const int reached = run_->hasRunner() ? run_->reachedPhases() : -1;
     Camera camera = sceneView_->viewCamera();
     if (const std::string problem = camera.validate(); !problem.empty()) {
         showError(tr("Cannot use this view"), QString::fromStdString(problem));
         return;
     }
-    camera_ = camera;
+    run_->setCamera(camera);
     rebuildRunner(reached);
 }
 
 void MainWindow::resetViewToAnalysisCamera() {
-    if (camera_)
-        sceneView_->setViewCamera(*camera_);
+    if (run_->camera())
+        sceneView_->setViewCamera(*run_->camera());
 }
 
-void MainWindow::startJob(Job job, const QString& what) {
-    if (busy_ || !runner_)
-        return;
-    busy_ = true;
-    cancelRequested_ = false;
-    const unsigned generation = ++generation_;
-    jobName_ = what;
-    stepper_->setBusy(true, runner_->completedPhases());
+void MainWindow::onBusyChanged(bool busy) {
+    if (busy)
+        stepper_->setBusy(true, run_->runningPhase());
+    else
+        stepper_->setBusy(false);
     updateActions();
     updateStatus();
-    Runner* runner = runner_.get();
-    const auto phaseStarted = [this, generation](int phase) {
-        QMetaObject::invokeMethod(
-            this, [this, phase, generation] { onPhaseStarted(phase, generation); },
-            Qt::QueuedConnection);
-    };
-    watcher_.setFuture(QtConcurrent::run([runner, job = std::move(job), phaseStarted]() {
-        JobResult result;
-        try {
-            job(*runner, phaseStarted);
-        } catch (const PhaseCancelled&) {
-            result.cancelled = true;
-        } catch (const std::exception& e) {
-            result.error = QString::fromStdString(e.what());
-        } catch (...) {
-            result.error = QStringLiteral("unknown error");
-        }
-        return result;
-    }));
 }
 
-void MainWindow::onPhaseStarted(int phase, unsigned generation) {
-    if (!busy_ || generation != generation_)
-        return;
+void MainWindow::onProgress(int phase) {
     stepper_->setBusy(true, phase);
-    if (runner_ && phase < runner_->phaseCount())
+    const Method* method = run_->method();
+    if (method && phase < static_cast<int>(method->phases.size()))
         phaseLabel_->setText(
-            tr("running %1…").arg(QString::fromStdString(runner_->method().phases[phase].name)));
+            tr("running %1…").arg(QString::fromStdString(method->phases[phase].name)));
 }
 
-void MainWindow::onJobFinished() {
-    // A late signal of a job that cancelAndWait() already finished.
-    if (!busy_ || !watcher_.future().isFinished())
-        return;
-    const JobResult result = watcher_.result();
-    busy_ = false;
-    stepper_->setBusy(false);
-    showRunnerState();
-    if (!result.error.isEmpty())
-        showError(tr("Phase failed"), result.error);
-    else if (result.cancelled)
-        statusBar()->showMessage(tr("Cancelled"), 3000);
+void MainWindow::onRunIdle() {
     updateActions();
     updateStatus();
     emit idle();
 }
 
-void MainWindow::cancelAndWait() {
-    if (!busy_)
-        return;
-    cancelRequested_ = true;
-    if (runner_)
-        runner_->requestCancel();
-    watcher_.waitForFinished();
-    onJobFinished();
-}
-
 bool MainWindow::waitForIdle(int timeoutMs) {
-    if (!busy_)
-        return true;
-    QEventLoop loop;
-    QTimer timer;
-    timer.setSingleShot(true);
-    connect(this, &MainWindow::idle, &loop, &QEventLoop::quit);
-    connect(&timer, &QTimer::timeout, &loop, &QEventLoop::quit);
-    timer.start(timeoutMs);
-    while (busy_ && timer.isActive())
-        loop.exec();
-    return !busy_;
-}
-
-int MainWindow::reachedPhases() const {
-    // While a job runs the runner belongs to the worker thread: use the job's
-    // target instead of reading it.
-    return busy_ ? targetPhases_ : runner_->completedPhases();
+    return run_->waitForIdle(timeoutMs);
 }
 
 int MainWindow::completedPhases() const {
-    return runner_ && !busy_ ? runner_->completedPhases() : 0;
+    return run_->completedPhases();
 }
 
 Snapshot MainWindow::currentSnapshot() const {
-    if (runner_ && !busy_)
-        return runner_->current();
-    if (input_)
-        return *input_;
-    return {};
+    return run_->currentSnapshot();
 }
 
 void MainWindow::showRunnerState() {
-    if (!runner_) {
-        if (input_) {
-            sceneView_->setSnapshot(*input_);
-            if (camera_) {
-                sceneView_->setAnalysisCamera(*camera_);
-                imageView_->setScene(*input_, *camera_);
+    const Runner* runner = run_->runner();
+    if (!runner) {
+        if (run_->isBusy())
+            return;
+        if (const std::optional<Snapshot>& input = run_->input()) {
+            sceneView_->setSnapshot(*input);
+            if (const std::optional<Camera>& camera = run_->camera()) {
+                sceneView_->setAnalysisCamera(*camera);
+                imageView_->setScene(*input, *camera);
             }
         } else {
             sceneView_->clearScene();
@@ -888,14 +814,16 @@ void MainWindow::showRunnerState() {
         updateColorLegend();
         return;
     }
-    const Snapshot& snapshot = runner_->current();
-    sceneView_->setAnalysisCamera(runner_->camera());
+    const Snapshot& snapshot = runner->current();
+    sceneView_->setAnalysisCamera(runner->camera());
     sceneView_->setSnapshot(snapshot);
-    imageView_->setScene(snapshot, runner_->camera());
-    stepper_->setSnapshots(runner_->snapshots());
+    imageView_->setScene(snapshot, runner->camera());
+    stepper_->setSnapshots(runner->snapshots());
     // Facing appears with its phase without the selector's list changing.
     updateColorLegend();
     updateComparison();
+    updateActions();
+    updateStatus();
 }
 
 void MainWindow::setViewLayout(ViewLayout layout) {
@@ -928,7 +856,7 @@ void MainWindow::createCompareSelector(QToolBar* toolBar) {
     toolBar->addWidget(compareSelector_);
     connect(compareSelector_, &QComboBox::currentIndexChanged, this, [this](int index) {
         comparison_->setOtherMethod(compareSelector_->itemData(index).toString());
-        comparison_->setPrimary(input_, camera_, methodPanel_->parameters());
+        comparison_->setPrimary(run_->input(), run_->camera(), methodPanel_->parameters());
     });
 }
 
@@ -941,15 +869,14 @@ bool MainWindow::setComparisonMethod(const QString& name) {
 }
 
 void MainWindow::updateComparison() {
-    constexpr double kComparisonTolerancePixels = 2.0;
     const QString other = comparison_->otherMethod();
-    if (other.isEmpty() || !camera_) {
+    if (other.isEmpty() || !run_->camera()) {
         imageView_->clearComparison();
         return;
     }
     const Method* otherMethod = findMethod(other.toStdString());
     const QString otherLabel = otherMethod ? QString::fromStdString(otherMethod->label) : other;
-    if (busy_)
+    if (run_->isBusy())
         return; // shown when the phase job ends (showRunnerState)
     if (comparison_->isRunning()) {
         statusBar()->showMessage(tr("Running %1 for the comparison…").arg(otherLabel), 5000);
@@ -961,13 +888,14 @@ void MainWindow::updateComparison() {
             tr("Comparison with %1 failed: %2").arg(otherLabel, comparison_->error()));
         return;
     }
-    const Camera& camera = runner_ ? runner_->camera() : *camera_;
+    const Camera& camera = run_->runner() ? run_->runner()->camera() : *run_->camera();
     const std::vector<ImagePolyline> here = drawnCurves(currentSnapshot(), camera);
     const std::vector<ImagePolyline> there = drawnCurves(*comparison_->result(), camera);
     // Short registry names ("consistent"): the 2D view's legend is narrow.
     const Method* method = methodPanel_->method();
     imageView_->setComparison(method ? QString::fromStdString(method->name) : tr("this method"),
-                              other, there, compareCurves(here, there, kComparisonTolerancePixels));
+                              other, there,
+                              compareCurves(here, there, defaults_.comparisonTolerancePixels));
 }
 
 bool MainWindow::setColorField(const QString& field) {
@@ -1010,41 +938,42 @@ void MainWindow::onColorSelected(int index) {
 }
 
 void MainWindow::updateActions() {
-    const bool idle = !busy_ && runner_;
-    stepAction_->setEnabled(idle && !runner_->atEnd());
-    runAction_->setEnabled(idle && !runner_->atEnd());
-    backAction_->setEnabled(idle && runner_->completedPhases() > 0);
-    resetAction_->setEnabled(idle && runner_->completedPhases() > 0);
-    cameraFromViewAction_->setEnabled(input_.has_value());
-    viewToCameraAction_->setEnabled(camera_.has_value());
-    cancelAction_->setEnabled(busy_);
+    const Runner* runner = run_->runner(); // null while busy
+    stepAction_->setEnabled(runner && !runner->atEnd());
+    runAction_->setEnabled(runner && !runner->atEnd());
+    backAction_->setEnabled(runner && runner->completedPhases() > 0);
+    resetAction_->setEnabled(runner && runner->completedPhases() > 0);
+    cameraFromViewAction_->setEnabled(run_->input().has_value());
+    viewToCameraAction_->setEnabled(run_->camera().has_value());
+    cancelAction_->setEnabled(run_->isBusy());
 }
 
 void MainWindow::updateStatus() {
-    if (input_) {
+    if (const std::optional<Snapshot>& input = run_->input()) {
         meshLabel_->setText(tr("%1 — %2 faces, %3 vertices")
                                 .arg(QFileInfo(meshName_).fileName())
-                                .arg(input_->mesh->faceCount())
-                                .arg(input_->mesh->vertexCount()));
+                                .arg(input->mesh->faceCount())
+                                .arg(input->mesh->vertexCount()));
     } else {
         meshLabel_->setText(
             tr("no mesh — File > Open, drop a file, or pass one on the command line"));
     }
-    busyBar_->setVisible(busy_);
-    if (busy_) {
-        phaseLabel_->setText(jobName_ + QStringLiteral("…"));
+    busyBar_->setVisible(run_->isBusy());
+    if (run_->isBusy()) {
+        phaseLabel_->setText(run_->jobName() + QStringLiteral("…"));
         return;
     }
-    if (!runner_) {
+    const Runner* runner = run_->runner();
+    if (!runner) {
         phaseLabel_->setText(QString());
         return;
     }
-    const Snapshot& s = runner_->current();
-    QString text = tr("%1: %2 (%3/%4)")
-                       .arg(QString::fromStdString(runner_->method().name),
-                            QString::fromStdString(s.phaseName))
-                       .arg(runner_->completedPhases())
-                       .arg(runner_->phaseCount());
+    const Snapshot& s = runner->current();
+    QString text =
+        tr("%1: %2 (%3/%4)")
+            .arg(QString::fromStdString(runner->method().name), QString::fromStdString(s.phaseName))
+            .arg(runner->completedPhases())
+            .arg(runner->phaseCount());
     if (s.phaseIndex >= 0)
         text += tr(", %1 ms").arg(s.phaseSeconds * 1000.0, 0, 'f', 1);
     if (const long long violations = s.invariantViolations(); violations > 0)
@@ -1081,7 +1010,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    cancelAndWait();
+    run_->cancelAndWait();
     sessions_->saveWindowSettings();
     QMainWindow::closeEvent(event);
 }
@@ -1136,18 +1065,16 @@ bool MainWindow::restoreRun(std::shared_ptr<const PolygonMesh> mesh, const QStri
     if (!ok)
         return false;
     methodPanel_->setParameters(parameters);
-    camera_ = camera;
+    run_->setCamera(camera);
     sceneView_->setViewCamera(camera);
     rebuildRunner(phases);
     return true;
 }
 
 void MainWindow::cancelPhases() {
-    if (!busy_)
+    if (!run_->isBusy())
         return;
-    cancelRequested_ = true;
-    if (runner_)
-        runner_->requestCancel();
+    run_->cancel();
     statusBar()->showMessage(tr("Cancelling…"));
 }
 

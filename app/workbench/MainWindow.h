@@ -1,7 +1,8 @@
 #pragma once
-// The workbench window: opens a mesh, owns the contour::Runner of the chosen
-// method on the analysis camera, runs its phases off the GUI thread
-// (QtConcurrent) and hands each resulting immutable Snapshot to the views.
+// The workbench window: opens a mesh, hands it with the chosen method, its
+// parameters and the analysis camera to its RunController (which owns the
+// contour::Runner and runs the phases off the GUI thread) and shows each
+// resulting immutable Snapshot in the views.
 //
 // Layout: the 3D scene view and the 2D image view side by side in a
 // splitter, a dock with the method panel and the phase stepper on the left,
@@ -11,18 +12,17 @@
 // toggles of both views (shown when the snapshot has a view graph), a status
 // bar. The small public API
 // below is what the menus call, and what tests drive.
+#include "RunController.h"
 #include "SceneView3D.h"
+#include "WorkbenchDefaults.h"
 #include "camera/Camera.h"
 #include "mesh/PolygonMesh.h"
 #include "pipeline/Runner.h"
 #include "pipeline/Snapshot.h"
 
-#include <QFutureWatcher>
 #include <QMainWindow>
 #include <QString>
 #include <array>
-#include <atomic>
-#include <functional>
 #include <memory>
 #include <optional>
 
@@ -79,17 +79,17 @@ public:
     // Puts the 3D view back on the analysis camera.
     void resetViewToAnalysisCamera();
 
-    bool isBusy() const { return busy_; }
+    bool isBusy() const { return run_->isBusy(); }
     // Processes events until no phase runs; false on timeout.
     bool waitForIdle(int timeoutMs = 120000);
 
     // Valid while idle.
-    const Runner* runner() const { return busy_ ? nullptr : runner_.get(); }
+    const Runner* runner() const { return run_->runner(); }
     int completedPhases() const;
     // The snapshot the views show (the input before any phase; an empty
     // snapshot when no mesh is open).
     Snapshot currentSnapshot() const;
-    std::optional<Camera> analysisCamera() const { return camera_; }
+    std::optional<Camera> analysisCamera() const { return run_->camera(); }
     QString lastError() const { return lastError_; }
 
     // What the 3D view colours the mesh by: "facing" (front/back) or a scalar
@@ -128,15 +128,15 @@ public:
     void setViewLayout(ViewLayout layout);
     ViewLayout viewLayout() const;
 
-    // Method comparison (issue 6, item 4): a second method run on the same
+    // Method comparison: a second method run on the same
     // mesh and camera, its curves and the differences shown in the 2D view.
     // An empty name turns it off; false for a name that is not a method.
     bool setComparisonMethod(const QString& name);
     MethodComparison* methodComparison() const { return comparison_; }
     QComboBox* compareSelector() const { return compareSelector_; }
 
-    // Sessions, diagnostic snapshots, recent files, settings (issue 6 items
-    // 5-6; the logic is in SessionController and SnapshotExport). Each
+    // Sessions, diagnostic snapshots, recent files, settings (the
+    // logic is in SessionController and SnapshotExport). Each
     // returns false and shows why on failure.
     bool saveSession(const QString& path);
     bool openSession(const QString& path);
@@ -154,13 +154,15 @@ public:
     SessionController* sessionController() const { return sessions_; }
     QAction* cancelAction() const { return cancelAction_; }
 
-    // Linked selection and the inspector (issue 6, item 3; the logic is in
+    // Linked selection and the inspector (the logic is in
     // SelectionController): the right dock's inspector, the selection shared
     // by both views, and View › Next inconsistent face (N).
     Inspector* inspector() const { return inspector_; }
     SelectionController* selectionController() const { return selection_; }
     QAction* nextInconsistentAction() const { return nextInconsistentAction_; }
 
+    // The runner and its background jobs (RunController.h).
+    RunController* runController() const { return run_; }
     SceneView3D* sceneView() const { return sceneView_; }
     ImageView2D* imageView() const { return imageView_; }
     PhaseStepper* phaseStepper() const { return stepper_; }
@@ -180,15 +182,8 @@ protected:
     void closeEvent(QCloseEvent* event) override;
 
 private:
-    struct JobResult {
-        bool cancelled = false;
-        QString error;
-    };
-    // Runs on a worker thread; calls phaseStarted(phase) before each phase.
-    using Job = std::function<void(Runner&, const std::function<void(int)>& phaseStarted)>;
-
     void createActions();
-    // The inspector dock, the selection and its actions (issue 6, item 3).
+    // The inspector dock, the selection and its actions.
     void createSelection();
     void createLayout();
     void openFileDialog();
@@ -196,12 +191,10 @@ private:
     // Makes a new runner for the current mesh, method, parameters and camera,
     // then runs to `completed` phases (-1: to the end).
     void rebuildRunner(int completed);
-    void startJob(Job job, const QString& what);
-    void onJobFinished();
-    void onPhaseStarted(int phase, unsigned generation);
-    void cancelAndWait();
-    // Phases completed, or aimed for by the running job; needs a runner.
-    int reachedPhases() const;
+    // The run controller's reports.
+    void onBusyChanged(bool busy);
+    void onProgress(int phase);
+    void onRunIdle();
     void showRunnerState();
     void updateActions();
     void updateStatus();
@@ -251,31 +244,20 @@ private:
     QAction* resetAction_ = nullptr;
     QAction* cameraFromViewAction_ = nullptr;
     QAction* viewToCameraAction_ = nullptr;
-    // Sessions, snapshots, recent files, settings, About, Cancel (issue 6).
+    // Sessions, snapshots, recent files, settings, About, Cancel.
     SessionController* sessions_ = nullptr;
     QAction* cancelAction_ = nullptr;
     bool restoring_ = false; // restoreRun: rebuildRunner waits for the last call
-    // Linked selection and the inspector (issue 6, item 3).
+    // Linked selection and the inspector.
     Inspector* inspector_ = nullptr;
     SelectionController* selection_ = nullptr;
     QAction* nextInconsistentAction_ = nullptr;
 
     std::shared_ptr<const PolygonMesh> cage_;
-    std::optional<Snapshot> input_;
     QString meshName_;
-    std::optional<Camera> camera_;
-    std::unique_ptr<Runner> runner_;
-    QFutureWatcher<JobResult> watcher_;
-    bool busy_ = false;
-    // Checked by a job between phases (the runner's own flag covers the
-    // inside of a phase).
-    std::atomic<bool> cancelRequested_{false};
-    // The phase count the running job (or the last one) aims for.
-    int targetPhases_ = 0;
-    // Incremented per job, so that late progress messages of an old job are
-    // ignored.
-    unsigned generation_ = 0;
-    QString jobName_;
+    // What the window starts with (resources/settings/defaults.json).
+    WorkbenchDefaults defaults_;
+    RunController* run_ = nullptr;
     QString lastError_;
     bool interactive_ = true;
 };

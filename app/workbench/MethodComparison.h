@@ -1,6 +1,6 @@
 #pragma once
 // A second contour method run on the same mesh and analysis camera as the
-// window's method, for the 2D view's comparison (issue 6, item 4). It runs to
+// window's method, for the 2D view's comparison. It runs to
 // its last phase on a worker thread whenever the mesh, the camera or the
 // method to compare with changes; a run made stale by a newer request is
 // cancelled and its result dropped. Parameters the two methods share (the

@@ -3,6 +3,7 @@
 #include "MainWindow.h"
 #include "MethodComparison.h"
 #include "MethodPanel.h"
+#include "Resources.h"
 #include "SceneView3D.h"
 #include "contours/Methods.h"
 #include "mesh/MeshError.h"
@@ -59,17 +60,23 @@ QString SessionController::viewGraphKey(int toggle) {
 }
 
 void SessionController::addFileActions(QMenu* file, QAction* before) {
-    openAction_ = new QAction(tr("Open &session…"), this);
+    openAction_ =
+        new QAction(resourceIcon(QStringLiteral("open-session")), tr("Open &session…"), this);
+    openAction_->setObjectName(QStringLiteral("openSession"));
     openAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_O));
     openAction_->setToolTip(tr("Reopen a saved session: mesh, analysis camera, method, "
                                "parameters, phase reached and display (Ctrl+Shift+O)"));
     connect(openAction_, &QAction::triggered, this, &SessionController::openDialog);
-    saveAction_ = new QAction(tr("&Save session…"), this);
+    saveAction_ =
+        new QAction(resourceIcon(QStringLiteral("save-session")), tr("&Save session…"), this);
+    saveAction_->setObjectName(QStringLiteral("saveSession"));
     saveAction_->setShortcut(QKeySequence::Save);
     saveAction_->setToolTip(tr("Save the mesh path, analysis camera, method, parameters, phase "
                                "reached and display choices as a .cwsession file (Ctrl+S)"));
     connect(saveAction_, &QAction::triggered, this, &SessionController::saveDialog);
-    exportAction_ = new QAction(tr("&Export diagnostic snapshot…"), this);
+    exportAction_ = new QAction(resourceIcon(QStringLiteral("export-snapshot")),
+                                tr("&Export diagnostic snapshot…"), this);
+    exportAction_->setObjectName(QStringLiteral("exportSnapshot"));
     exportAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_E));
     exportAction_->setToolTip(
         tr("Write into a folder: both views as PNG, the 2D view as SVG, a JSON report (method, "

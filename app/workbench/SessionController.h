@@ -1,5 +1,5 @@
 #pragma once
-// The workbench's sessions, recent files and kept settings (issue 6 item 5):
+// The workbench's sessions, recent files and kept settings:
 // - captures the window's state as a Session (export/SessionFile.h: mesh
 //   path, analysis camera, 3D view camera, method, parameters, phase reached,
 //   and the display choices as strings: colour field, overlay and view-graph

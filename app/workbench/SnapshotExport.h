@@ -1,5 +1,5 @@
 #pragma once
-// File › Export diagnostic snapshot (issue 6 item 6): the window's current
+// File › Export diagnostic snapshot: the window's current
 // state written into one folder, all files or none. The report, SVG, PLY and
 // session come from export/DiagnosticSnapshot.h (contour-batch
 // --snapshot-dir writes the same); this adds the grabs of the two views as

@@ -2,6 +2,7 @@
 // method and step through its phases. Usage: contour-workbench [mesh-file |
 // session.cwsession]
 #include "MainWindow.h"
+#include "Resources.h"
 #include "SessionController.h"
 #include "SurfaceFormat.h"
 
@@ -15,6 +16,7 @@ int main(int argc, char* argv[]) {
     QApplication app(argc, argv);
     QApplication::setApplicationName(QStringLiteral("Contour Workbench"));
     QApplication::setOrganizationName(QStringLiteral("contour"));
+    QApplication::setWindowIcon(contour::resourceIcon(QStringLiteral("contour-workbench")));
 
     contour::MainWindow window;
     // Both views side by side between two docks need room: a first start

@@ -1,0 +1,153 @@
+#include "SceneColors.h"
+
+#include "Resources.h"
+
+#include <QCoreApplication>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QString>
+#include <mutex>
+
+namespace contour {
+
+namespace {
+
+// Filled by loadSceneColors(); until then every colour is black.
+struct Palette {
+    SceneColor frontFace{}, backFace{}, edgeOnFace{}, unclassifiedFace{}, contour3D{}, contour2D{},
+        boundary{}, intersection{}, frustum{}, controlCage{}, undefinedVbo{}, inconsistentOutline{},
+        radialTint{}, standardRadialTint{}, comparisonOther{}, comparisonOnlyHere{}, radialEdge{},
+        contourVertex{}, cuspVertex{}, selection{}, divergingNegative{}, divergingPositive{},
+        nanValue{}, contourOverField{}, scalarBarText{}, backgroundTop{}, backgroundBottom{};
+};
+Palette palette;
+
+// The keys of resources/colormaps/scene-colors.json.
+const std::pair<const char*, SceneColor*> kSceneKeys[] = {
+    {"front-face", &palette.frontFace},
+    {"back-face", &palette.backFace},
+    {"edge-on-face", &palette.edgeOnFace},
+    {"unclassified-face", &palette.unclassifiedFace},
+    {"contour-3d", &palette.contour3D},
+    {"contour-2d", &palette.contour2D},
+    {"boundary", &palette.boundary},
+    {"intersection", &palette.intersection},
+    {"frustum", &palette.frustum},
+    {"control-cage", &palette.controlCage},
+    {"undefined-vbo", &palette.undefinedVbo},
+    {"inconsistent-outline", &palette.inconsistentOutline},
+    {"radial-tint", &palette.radialTint},
+    {"standard-radial-tint", &palette.standardRadialTint},
+    {"comparison-other", &palette.comparisonOther},
+    {"comparison-only-here", &palette.comparisonOnlyHere},
+    {"radial-edge", &palette.radialEdge},
+    {"contour-vertex", &palette.contourVertex},
+    {"cusp-vertex", &palette.cuspVertex},
+    {"selection", &palette.selection},
+    {"contour-over-field", &palette.contourOverField},
+    {"scalar-bar-text", &palette.scalarBarText},
+    {"background-top", &palette.backgroundTop},
+    {"background-bottom", &palette.backgroundBottom},
+};
+// The keys of resources/colormaps/diverging.json.
+const std::pair<const char*, SceneColor*> kDivergingKeys[] = {
+    {"negative", &palette.divergingNegative},
+    {"positive", &palette.divergingPositive},
+    {"nan", &palette.nanValue},
+};
+
+[[noreturn]] void fail(const QString& path, const QString& why) {
+    qFatal("%s: %s", qPrintable(path), qPrintable(why));
+}
+
+QJsonObject readObject(const QString& path) {
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly))
+        fail(path, QStringLiteral("cannot read the resource"));
+    QJsonParseError error;
+    const QJsonDocument document = QJsonDocument::fromJson(file.readAll(), &error);
+    if (error.error != QJsonParseError::NoError || !document.isObject())
+        fail(path, error.errorString());
+    return document.object();
+}
+
+SceneColor toColor(const QJsonValue& value, const QString& path, const QString& key) {
+    const QJsonArray rgb = value.toArray();
+    if (rgb.size() != 3)
+        fail(path, QStringLiteral("\"%1\" is not an [r, g, b] triple").arg(key));
+    SceneColor c{rgb[0].toDouble(-1.0), rgb[1].toDouble(-1.0), rgb[2].toDouble(-1.0)};
+    for (double v : {c.r, c.g, c.b})
+        if (!(v >= 0.0 && v <= 1.0))
+            fail(path, QStringLiteral("\"%1\" has a component outside [0, 1]").arg(key));
+    return c;
+}
+
+void readColors() {
+    registerContourResources();
+    const QString scenePath = QStringLiteral(":/colormaps/scene-colors.json");
+    const QJsonObject colors = readObject(scenePath).value(QStringLiteral("colors")).toObject();
+    for (const auto& [key, target] : kSceneKeys) {
+        const QString name = QString::fromLatin1(key);
+        if (!colors.contains(name))
+            fail(scenePath, QStringLiteral("no colour \"%1\"").arg(name));
+        *target =
+            toColor(colors.value(name).toObject().value(QStringLiteral("rgb")), scenePath, name);
+    }
+    const QString divergingPath = QStringLiteral(":/colormaps/diverging.json");
+    const QJsonObject diverging = readObject(divergingPath);
+    for (const auto& [key, target] : kDivergingKeys) {
+        const QString name = QString::fromLatin1(key);
+        if (!diverging.contains(name))
+            fail(divergingPath, QStringLiteral("no colour \"%1\"").arg(name));
+        *target = toColor(diverging.value(name), divergingPath, name);
+    }
+}
+
+} // namespace
+
+void loadSceneColors() {
+    static std::once_flag once;
+    std::call_once(once, readColors);
+}
+
+namespace sceneColors {
+
+const SceneColor& kFrontFace = palette.frontFace;
+const SceneColor& kBackFace = palette.backFace;
+const SceneColor& kEdgeOnFace = palette.edgeOnFace;
+const SceneColor& kUnclassifiedFace = palette.unclassifiedFace;
+const SceneColor& kContour3D = palette.contour3D;
+const SceneColor& kContour2D = palette.contour2D;
+const SceneColor& kBoundary = palette.boundary;
+const SceneColor& kIntersection = palette.intersection;
+const SceneColor& kFrustum = palette.frustum;
+const SceneColor& kControlCage = palette.controlCage;
+const SceneColor& kUndefinedVbo = palette.undefinedVbo;
+const SceneColor& kInconsistentOutline = palette.inconsistentOutline;
+const SceneColor& kRadialTint = palette.radialTint;
+const SceneColor& kStandardRadialTint = palette.standardRadialTint;
+const SceneColor& kComparisonOther = palette.comparisonOther;
+const SceneColor& kComparisonOnlyHere = palette.comparisonOnlyHere;
+const SceneColor& kRadialEdge = palette.radialEdge;
+const SceneColor& kContourVertex = palette.contourVertex;
+const SceneColor& kCuspVertex = palette.cuspVertex;
+const SceneColor& kSelection = palette.selection;
+const SceneColor& kDivergingNegative = palette.divergingNegative;
+const SceneColor& kDivergingPositive = palette.divergingPositive;
+const SceneColor& kNanValue = palette.nanValue;
+const SceneColor& kContourOverField = palette.contourOverField;
+const SceneColor& kScalarBarText = palette.scalarBarText;
+const SceneColor& kBackgroundTop = palette.backgroundTop;
+const SceneColor& kBackgroundBottom = palette.backgroundBottom;
+
+} // namespace sceneColors
+
+} // namespace contour
+
+// With the application object, before any widget exists.
+static void loadSceneColorsAtStartup() {
+    contour::loadSceneColors();
+}
+Q_COREAPP_STARTUP_FUNCTION(loadSceneColorsAtStartup)
