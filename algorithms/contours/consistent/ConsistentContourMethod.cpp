@@ -92,8 +92,12 @@ Method makeConsistentContourMethod() {
     addVertexRemovalPhase(m);
     addPatchSearchPhase(m);
     addNormalWigglePhase(m);
+    addCuspEndPushPhase(m);
+    addCuspEndRetriangulationPhase(m);
     addContourRefinementPhase(m);
-    addCuspRetryPhase(m); // reruns the phases above: keep it after them
+    addContourRefinementRetriangulationPhase(m);
+    // Decided after the last phase so far, re-runs from cusp-refinement.
+    addCuspRetryBranch(m);
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);
     addSimplificationPhase(m);

@@ -731,7 +731,8 @@ std::vector<InvariantCheck> checkRadialExtension(const PhaseContext& ctx, const 
 
 } // namespace
 
-CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, int phase) {
+CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, int phase,
+                                  bool everyEnd) {
     const ExtensionSettings set = extensionSettings(ctx, m);
     Extender ext(m, set, phase);
     CuspPushCounts out;
@@ -743,7 +744,7 @@ CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, in
     // push, kept only with fewer inconsistent faces, pre-empts no other move.
     // Earlier, with the cusps' pushes, 2 views of 26 ended worse (spot).
     const long long cuspMoves = ext.stats.pushMoves;
-    if (set.pushDepth > 0 && ctx.parameters.getBool("extension-push-every-end-final"))
+    if (set.pushDepth > 0 && everyEnd)
         for (int sweep = 0; sweep < ctx.parameters.getInt("extension-max-sweeps"); ++sweep)
             if (pushCuspEnds(ctx, m, ext, nullptr, true) == 0)
                 break;
@@ -789,30 +790,6 @@ void addRadialExtensionPhase(Method& m) {
          5,
          0,
          10,
-         {}});
-    m.parameters.push_back(
-        {"extension-cusp-push-final",
-         "Extension: cusp push after the normal wiggle",
-         "Pushes the cusps' radial ends again (extension-cusp-push-depth) once the normal "
-         "wiggle (§6.4, final step) is done, on the faces still inconsistent then (not in the "
-         "paper).",
-         ParameterType::Bool,
-         true,
-         0,
-         0,
-         {}});
-    m.parameters.push_back(
-        {"extension-push-every-end-final",
-         "Extension: push every radial end at the end",
-         "After the cusps' final push (extension-cusp-push-final), the far ends of all radial "
-         "edges that still touch an inconsistent face are pushed the same way, each push kept "
-         "only when fewer faces are inconsistent; last, so it never pre-empts another move. "
-         "Needs extension-cusp-push-depth > 0 and extension-cusp-push-final (not in the "
-         "paper).",
-         ParameterType::Bool,
-         true,
-         0,
-         0,
          {}});
     m.phases.push_back(
         {"radial-extension",
