@@ -97,7 +97,8 @@ Method branchingMethod(std::atomic<int>* adjustRuns) {
              const bool bad = s.counter("value") == ctx.parameters.getInt("bad");
              return std::vector<InvariantCheck>{{"value is not bad", bad ? 1 : 0, "value"}};
          }},
-        {"after", "",
+        {"after",
+         "",
          [](const PhaseContext& ctx, Snapshot& s) {
              s.setCounter("offset after", ctx.parameters.getInt("offset"));
          },
@@ -120,7 +121,9 @@ Method branchingMethod(std::atomic<int>* adjustRuns) {
                                      std::make_shared<const ToyTag>(100 + offset)});
         return plan;
     };
-    rule.figure = [](const Snapshot& s) { return std::optional<double>(s.counter("value")); };
+    rule.figure = [](const Snapshot& s) {
+        return std::optional<double>(s.counter("value"));
+    };
     rule.perfect = 0.0;
     rule.report = [](const PhaseContext&, const BranchSummary& b, Snapshot& s) {
         s.setCounter("toy runs", static_cast<double>(b.runs.size()));
@@ -326,7 +329,8 @@ private slots:
         QCOMPARE(r.current().counter("toy runs"), 4.0);
         QCOMPARE(r.current().counter("toy adopted"), 4.0);
         QCOMPARE(r.current().notes.size(), size_t{1});
-        QCOMPARE(QString::fromStdString(r.current().notes[0]), QString("toy branch: run 4 adopted"));
+        QCOMPARE(QString::fromStdString(r.current().notes[0]),
+                 QString("toy branch: run 4 adopted"));
         QVERIFY(r.step());
         QVERIFY(!r.current().run.inBranch());
         QCOMPARE(r.current().counter("offset after"), 0.0);

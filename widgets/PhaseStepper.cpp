@@ -88,8 +88,7 @@ void addRunRows(QTreeWidgetItem* item, const RunInfo& run) {
     row->setFirstColumnSpanned(true);
     QStringList lines{QStringLiteral("Branch %1: phases %2 to %3 re-run; first run %4")
                           .arg(QString::fromStdString(b.rule), QString::fromStdString(b.rerunFrom),
-                               QString::fromStdString(b.decideAfter),
-                               formatValue(b.firstFigure))};
+                               QString::fromStdString(b.decideAfter), formatValue(b.firstFigure))};
     for (size_t k = 0; k < b.runs.size(); ++k) {
         auto* child = new QTreeWidgetItem(row);
         child->setText(0, describeBranchRun(b, k));
@@ -355,8 +354,9 @@ void PhaseStepper::refresh() {
                 item->setForeground(1, QColor(200, 30, 30));
             // A phase of a branch's range: its run in the state column.
             if (after.run.inBranch())
-                item->setText(1, QStringLiteral("%1 · %2").arg(
-                                     toString(state), QString::fromStdString(after.run.describe())));
+                item->setText(
+                    1, QStringLiteral("%1 · %2").arg(toString(state),
+                                                     QString::fromStdString(after.run.describe())));
         } else {
             item->setText(2, QString());
             qDeleteAll(item->takeChildren());

@@ -29,7 +29,7 @@ struct BranchVariant {
 };
 
 struct BranchPlan {
-    std::vector<BranchVariant> variants; // in the order they are judged; empty: no branch
+    std::vector<BranchVariant> variants;    // in the order they are judged; empty: no branch
     std::shared_ptr<const BranchData> data; // for the rule's report (BranchSummary::data)
 };
 

@@ -31,28 +31,27 @@ inline constexpr CounterName kCuspRetryTargets{"cusp-retry-targets",
 inline constexpr CounterName kCuspRetryRuns{"cusp-retry-runs", "cusp retry: runs"};
 inline constexpr CounterName kCuspRetryAdopted{"cusp-retry-adopted",
                                                "cusp retry: run adopted (0: none)"};
-inline constexpr CounterName kCuspRetryBroken{
-    "cusp-retry-broken", "cusp retry: better runs breaking a post-condition"};
+inline constexpr CounterName kCuspRetryBroken{"cusp-retry-broken",
+                                              "cusp retry: better runs breaking a post-condition"};
 inline constexpr CounterName kCuspRetryCusps{"cusp-retry-cusps",
                                              "cusp retry: cusps refined around"};
 inline constexpr CounterName kCuspRetryEdgesHalved{"cusp-retry-edges-halved",
                                                    "cusp retry: edges halved"};
 inline constexpr CounterName kVerticesOffSurface{"vertices-off-surface",
                                                  "vertices off the surface"};
-inline constexpr CounterName kLargestNormalOffsetRatio{
-    "largest-normal-offset-ratio", "largest offset / mean one-ring distance"};
+inline constexpr CounterName kLargestNormalOffsetRatio{"largest-normal-offset-ratio",
+                                                       "largest offset / mean one-ring distance"};
 inline constexpr CounterName kLargestContourShift{
     "largest-contour-shift", "largest image shift of a C vertex off the surface (px)"};
 inline constexpr CounterName kCuspEndsPushed{"cusp-ends-pushed",
                                              "cusp radial ends pushed (extension-cusp-push-final)"};
 inline constexpr CounterName kOtherEndsPushed{
     "other-ends-pushed", "other radial ends pushed (extension-push-every-end-final)"};
-inline constexpr CounterName kPushWiggleTried{"push-wiggle-tried",
-                                              "vertices tried after the push"};
+inline constexpr CounterName kPushWiggleTried{"push-wiggle-tried", "vertices tried after the push"};
 inline constexpr CounterName kPushWiggleAccepted{"push-wiggle-accepted",
                                                  "vertices accepted after the push"};
-inline constexpr CounterName kPushWiggleRejectedFold{
-    "push-wiggle-rejected-fold", "offsets rejected (3D fold) after the push"};
+inline constexpr CounterName kPushWiggleRejectedFold{"push-wiggle-rejected-fold",
+                                                     "offsets rejected (3D fold) after the push"};
 inline constexpr CounterName kCuspEndFacesSearched{
     "cusp-end-faces-searched",
     "faces at a cusp's radial end searched (cusp-end-retriangulation-faces)"};

@@ -18,8 +18,8 @@ struct BranchData {
 // One variant run as the judge saw it.
 struct BranchRunSummary {
     std::string label;
-    std::optional<double> figure; // the judge's figure of its last snapshot
-    bool better = false;          // strictly better than the best run before it
+    std::optional<double> figure;    // the judge's figure of its last snapshot
+    bool better = false;             // strictly better than the best run before it
     bool postconditionsKept = false; // every re-run phase kept its post-conditions
     bool adopted = false;
 };

@@ -198,8 +198,7 @@ bool Runner::step() {
         const PhaseContext base(camera_, parameters_, &cancel_, progressOf(index));
         if (within) {
             // Stepping through a decided range again: the same report.
-            const std::string note =
-                method_->branches[rule].report(base, *within->summary, next);
+            const std::string note = method_->branches[rule].report(base, *within->summary, next);
             if (!note.empty())
                 next.notes.push_back(note);
         } else {
@@ -233,8 +232,7 @@ bool Runner::back() {
     snapshots_.pop_back();
     // Before rerunFrom the decision no longer holds.
     const int completed = completedPhases();
-    std::erase_if(decisions_,
-                  [&](const Decision& d) { return completed <= ranges_[d.rule].from; });
+    std::erase_if(decisions_, [&](const Decision& d) { return completed <= ranges_[d.rule].from; });
     return true;
 }
 

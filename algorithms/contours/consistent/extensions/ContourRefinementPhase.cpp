@@ -9,10 +9,10 @@
 // acceptance rule, not strictly better: the move is for accuracy). It runs
 // after the last optimization so that no move of §6.4 has to work around the
 // new vertices.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/numerics/ContourCuspSearch.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/numerics/ContourCuspSearch.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 
 #include <algorithm>

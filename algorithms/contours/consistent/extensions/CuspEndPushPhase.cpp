@@ -4,9 +4,9 @@
 // face are pushed along their radial curves again (RadialExtension.h), and
 // the vertices of the faces still inconsistent are wiggled along their
 // normals again around what moved.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/NormalWiggle.h"
 #include "contours/consistent/phases/RadialExtension.h"
 

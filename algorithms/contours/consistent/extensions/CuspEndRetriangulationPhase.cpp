@@ -3,10 +3,10 @@
 // Fig. 18e): once after the normal wiggle and the cusps' final push, and
 // again after contour refinement, whose new C vertices give the discs new
 // outlines.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/edits/CuspEndRetriangulation.h"
+#include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/NormalWiggle.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 

@@ -2,10 +2,10 @@
 // detection (§6.2 d) and contour insertion (§6.2 e): around every cusp with
 // cusp-refinement, and in a cusp retry's run (CuspRetryBranch.cpp) first
 // around the cusps its branch data selects.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/CuspRefinement.h"
 #include "contours/consistent/extensions/CuspRefinementTargets.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 
 #include <string>
 
@@ -55,8 +55,9 @@ bool CuspRefinementTargets::selects(const Camera& camera, const Vec3& cusp) cons
     return false;
 }
 
-std::vector<BranchVariant> cuspRefinementVariants(
-    const ParameterSet& p, bool every, std::shared_ptr<const CuspRefinementTargets> targets) {
+std::vector<BranchVariant>
+cuspRefinementVariants(const ParameterSet& p, bool every,
+                       std::shared_ptr<const CuspRefinementTargets> targets) {
     const CuspRefinementSettings set = cuspRefinementOptions(p).settings;
     const auto variant = [&](int rings, int levels) {
         return BranchVariant{"rings " + std::to_string(rings) + ", levels " +

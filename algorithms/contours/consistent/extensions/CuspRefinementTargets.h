@@ -23,7 +23,8 @@ struct CuspRefinementTargets : BranchData {
 // other rings <= cusp-refinement-rings and levels <= cusp-refinement-levels,
 // fewest levels, then rings, first; each variant overrides those two
 // parameters and carries `targets`.
-std::vector<BranchVariant> cuspRefinementVariants(const ParameterSet& p, bool every,
-                                                  std::shared_ptr<const CuspRefinementTargets> targets);
+std::vector<BranchVariant>
+cuspRefinementVariants(const ParameterSet& p, bool every,
+                       std::shared_ptr<const CuspRefinementTargets> targets);
 
 } // namespace contour::consistent

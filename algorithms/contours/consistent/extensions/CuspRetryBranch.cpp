@@ -6,10 +6,10 @@
 // detection and contour insertion) and adopts a run only when it has
 // strictly fewer inconsistent faces (ties keep the first run), so no view
 // ends worse and the views without such faces are untouched.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/extensions/CuspRefinementTargets.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 
 #include <memory>
 #include <set>
@@ -20,9 +20,9 @@ namespace contour::consistent {
 namespace {
 
 struct CuspRetryOptions {
-    bool enabled = true;     // cusp-retry
+    bool enabled = true;      // cusp-retry
     bool everyVariant = true; // cusp-retry-variants
-    double pixels = 2.0;     // cusp-retry-pixels
+    double pixels = 2.0;      // cusp-retry-pixels
 };
 
 CuspRetryOptions cuspRetryOptions(const ParameterSet& p) {

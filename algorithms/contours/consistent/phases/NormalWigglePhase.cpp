@@ -1,8 +1,8 @@
 // Vertex wiggling in the normal direction (Bénard 2014 §6.4, final step;
 // notes §2.4.5): vertices may leave the limit surface.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/NormalWiggle.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 
@@ -245,8 +245,8 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
                 continue;
             const Triangle t = m.face(f);
             for (int i = 0; i < 3 && !progress; ++i)
-                progress = wigglePairAlongNormal(m, t[i], t[(i + 1) % 3], o.pairSamples,
-                                                 o.fraction, phase, st);
+                progress = wigglePairAlongNormal(m, t[i], t[(i + 1) % 3], o.pairSamples, o.fraction,
+                                                 phase, st);
         }
         // Once the face's own edges give nothing: a corner of the face
         // with a neighbour off the face (normal-wiggle-ring-pairs, not in

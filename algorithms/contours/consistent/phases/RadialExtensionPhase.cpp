@@ -2,12 +2,12 @@
 // §2.4.1): inconsistent faces just beyond the radial strip are fixed by
 // sliding the far end of a radial edge along its radial curve and flipping
 // the edge opposite it.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/phases/RadialExtension.h"
-#include "contours/consistent/edits/RadialTriangles.h"
 
 #include <algorithm>
 #include <array>
