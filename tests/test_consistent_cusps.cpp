@@ -9,9 +9,9 @@
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
 #include "contours/consistent/mesh/ConsistentMesh.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
 #include "contours/consistent/numerics/JointRootSearch.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
@@ -385,7 +385,7 @@ private slots:
                 for (const Snapshot& s : r.snapshots)
                     QVERIFY2(violations(s).empty(),
                              ("view " + std::to_string(v) + ": " + violations(s)).c_str());
-                const auto [n, atCusp] = inconsistentAtCusps(r.after("normal-wiggle"));
+                const auto [n, atCusp] = inconsistentAtCusps(r.after("cusp-end-retriangulation"));
                 totals[k] += n;
                 atCusps[k] += atCusp;
             }
@@ -480,7 +480,7 @@ private slots:
                 for (const Snapshot& s : r.snapshots)
                     QVERIFY2(violations(s).empty(),
                              ("view " + std::to_string(v) + ": " + violations(s)).c_str());
-                const int n = inconsistentAtCusps(r.after("normal-wiggle")).first;
+                const int n = inconsistentAtCusps(r.after("cusp-end-retriangulation")).first;
                 totals[k] += n;
                 if (k == 1)
                     QVERIFY2(n == 0, ("view " + std::to_string(v) + ": " + std::to_string(n) +

@@ -23,11 +23,16 @@ namespace {
 
 // The phase whose output feeds the optimization, then the §6.4 sub-phases
 // in order (with vertex-removal and patch-search, extensions, before the
-// normal wiggle; a phase the method does not have is skipped).
-const char* const kPhases[] = {"radial-flips",     "radial-extension", "optimization-flips",
-                               "parameter-wiggle", "edge-splitting",   "vertex-removal",
-                               "patch-search",     "normal-wiggle"};
-constexpr int kPhaseCount = 8;
+// normal wiggle, and the cusps' final push and disc re-triangulation,
+// extensions, after it; a phase the method does not have is skipped).
+const char* const kPhases[] = {
+    "radial-flips",   "radial-extension",        "optimization-flips", "parameter-wiggle",
+    "edge-splitting", "vertex-removal",          "patch-search",       "normal-wiggle",
+    "cusp-end-push",  "cusp-end-retriangulation"};
+constexpr int kPhaseCount = 10;
+// The end of §6.4's final step: the normal wiggle, the cusps' final push
+// and the disc re-triangulation at their radial ends.
+const char* const kWiggleEnd = "cusp-end-retriangulation";
 constexpr int kSplitPhase = 4, kRemovalPhase = 5;
 
 const Snapshot* find(const std::vector<Snapshot>& snapshots, const std::string& phase) {
@@ -196,7 +201,7 @@ void compareOnOff(const std::vector<Snapshot>& offRun, const std::vector<Snapsho
             QVERIFY2(c.violations == 0,
                      qPrintable(QString::fromStdString("view " + std::to_string(view) + ", " +
                                                        s.phaseName + ": " + c.name)));
-    QVERIFY(largestOffsetRatio(after(onRun, "normal-wiggle")) <= 1.0 + 1e-9);
+    QVERIFY(largestOffsetRatio(after(onRun, kWiggleEnd)) <= 1.0 + 1e-9);
     const std::string worse = counts.add(offRun.back(), onRun.back(), view);
     QVERIFY2(worse.empty(), worse.c_str());
 }
@@ -460,15 +465,15 @@ private slots:
                 p.set("cusp-end-retriangulation-faces", 0);
             },
             [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
-                const Snapshot& on = after(onRun, "normal-wiggle");
+                const Snapshot& on = after(onRun, kWiggleEnd);
                 QCOMPARE(
                     after(offRun, "radial-extension").counter("cusp radial ends: pushed", -1.0),
                     0.0);
-                QCOMPARE(after(offRun, "normal-wiggle")
+                QCOMPARE(after(offRun, "cusp-end-push")
                              .counter("cusp radial ends pushed (extension-cusp-push-final)", -1.0),
                          0.0);
                 long long offClasses[kClassCount] = {}, onClasses[kClassCount] = {};
-                classifyInconsistent(after(offRun, "normal-wiggle"), offClasses);
+                classifyInconsistent(after(offRun, kWiggleEnd), offClasses);
                 classifyInconsistent(on, onClasses);
                 endsWithout += offClasses[kCuspRadialEnd];
                 endsWith += onClasses[kCuspRadialEnd];
@@ -514,8 +519,8 @@ private slots:
                 withoutSession10CuspMoves(p);
             },
             [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
-                QCOMPARE(after(offRun, "normal-wiggle").counter(counter, -1.0), 0.0);
-                pushed += after(onRun, "normal-wiggle").counter(counter, 0.0);
+                QCOMPARE(after(offRun, "cusp-end-push").counter(counter, -1.0), 0.0);
+                pushed += after(onRun, "cusp-end-push").counter(counter, 0.0);
             },
             t);
         if (!ok)
@@ -639,8 +644,8 @@ private slots:
         QVERIFY(faces > 0);
         const char* counter = "discs re-triangulated at a cusp's radial end";
         const auto discs = [&](const std::vector<Snapshot>& run) {
-            return after(run, "normal-wiggle").counter(counter, -1.0) +
-                   after(run, "contour-refinement").counter(counter, -1.0);
+            return after(run, "cusp-end-retriangulation").counter(counter, -1.0) +
+                   after(run, "contour-refinement-retriangulation").counter(counter, -1.0);
         };
         double applied = 0.0;
         OnOffCounts t;
@@ -700,16 +705,44 @@ private slots:
         const bool ok = runOnOff(
             cage, views, [](ParameterSet& p, bool on) { p.set("cusp-retry", on); },
             [&](const std::vector<Snapshot>& offRun, const std::vector<Snapshot>& onRun) {
-                QCOMPARE(after(offRun, "cusp-retry").counter("cusp retry: runs", 0.0), 0.0);
-                QVERIFY(largestOffsetRatio(after(onRun, "cusp-retry")) <= 1.0 + 1e-9);
-                const Snapshot& retry = after(onRun, "cusp-retry");
-                const bool took = retry.counter("cusp retry: run adopted (0: none)", 0.0) > 0.0;
+                // The branch is decided after the last optimization phase
+                // and re-runs from cusp-refinement.
+                const char* decided = "contour-refinement-retriangulation";
+                QCOMPARE(after(offRun, decided).counter("cusp retry: runs", 0.0), 0.0);
+                for (const Snapshot& s : offRun)
+                    QVERIFY(!s.run.inBranch());
+                QVERIFY(largestOffsetRatio(after(onRun, decided)) <= 1.0 + 1e-9);
+                const Snapshot& retry = after(onRun, decided);
+                const double runs = retry.counter("cusp retry: runs", 0.0);
+                const double adoptedRun = retry.counter("cusp retry: run adopted (0: none)", 0.0);
+                const bool took = adoptedRun > 0.0;
                 adopted += took;
-                // The stepper says when the mesh is another run's.
-                if (retry.counter("cusp retry: runs", 0.0) > 0.0) {
-                    QCOMPARE(retry.notes.size(), size_t{1});
-                    QCOMPARE(QString::fromStdString(retry.notes[0]).contains("second run"), took);
+                if (runs == 0.0) {
+                    for (const Snapshot& s : onRun)
+                        QVERIFY(!s.run.inBranch());
+                    return;
                 }
+                // The stepper says which run the snapshots are: every phase
+                // from cusp-refinement to the decision is the adopted run's
+                // (or the first run's, kept), the others belong to no run.
+                QCOMPARE(retry.notes.size(), size_t{1});
+                QCOMPARE(QString::fromStdString(retry.notes[0]).contains("this mesh is run"), took);
+                bool inRange = false;
+                for (const Snapshot& s : onRun) {
+                    inRange = inRange || s.phaseName == "cusp-refinement";
+                    QCOMPARE(s.run.inBranch(), inRange);
+                    if (inRange) {
+                        QCOMPARE(static_cast<double>(s.run.run), adoptedRun);
+                        QCOMPARE(static_cast<double>(s.run.branch->runs.size()), runs);
+                    }
+                    inRange = inRange && s.phaseName != decided;
+                }
+                // The adopted run's own cusp refinement refined around the
+                // cusps the retry reports.
+                if (took)
+                    QCOMPARE(after(onRun, "cusp-refinement")
+                                 .counter("cusp retry: cusps refined around", -1.0),
+                             retry.counter("cusp retry: cusps refined around", -2.0));
             },
             t);
         if (!ok)
@@ -743,7 +776,7 @@ private slots:
                     for (const InvariantCheck& c : s.invariants)
                         QVERIFY2(c.violations == 0,
                                  qPrintable(QString::fromStdString(s.phaseName + ": " + c.name)));
-                const double shift = after(run, "normal-wiggle").counter(counter, -1.0);
+                const double shift = after(run, kWiggleEnd).counter(counter, -1.0);
                 QVERIFY(shift >= 0.0);
                 (bound > 0.0 ? bounded : unbounded) =
                     std::max(bound > 0.0 ? bounded : unbounded, shift);
@@ -828,7 +861,7 @@ private slots:
                 QCOMPARE(removal.counter("vertices"), split.counter("vertices") - removed);
                 t.removed += removed;
             }
-            const Snapshot& last = after(snapshots, "normal-wiggle");
+            const Snapshot& last = after(snapshots, kWiggleEnd);
             const double ratio = largestOffsetRatio(last);
             QVERIFY2(ratio <= 1.0 + 1e-9, qPrintable(QString("offset ratio %1").arg(ratio)));
             t.offsetRatio = std::max(t.offsetRatio, ratio);

@@ -10,8 +10,8 @@
 #include "SceneView3D.h"
 #include "SurfaceFormat.h"
 #include "contours/Methods.h"
-#include "mesh/io/MeshWriter.h"
 #include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshWriter.h"
 
 #include <QApplication>
 #include <QCheckBox>
@@ -127,6 +127,7 @@ private slots:
     void opensSampleAndRunsToEnd();
     void stepsBackAndForward();
     void stepperCountersMatchSnapshots();
+    void stepperMarksBranchRuns();
     void switchesMethod();
     void parameterFormRerunsMethod();
     void smoothSurfaceReplacesWorkingMesh();
@@ -336,6 +337,74 @@ void TestMainWindow::stepperCountersMatchSnapshots() {
     QCOMPARE(facing.counter("front faces") + facing.counter("back faces") +
                  facing.counter("edge-on faces", 0.0),
              static_cast<double>(facing.mesh->faceCount()));
+}
+
+// A branch's range in the stepper: each of its phases says which run it
+// shows and lists every run judged (pipeline/Branch.h), the phases outside
+// the range say nothing of runs.
+void TestMainWindow::stepperMarksBranchRuns() {
+    Method m;
+    m.name = "branching";
+    m.parameters = {{"offset", "Offset", "", ParameterType::Int, 0, -10, 10, {}}};
+    m.phases = {
+        {"start", "", [](const PhaseContext&, Snapshot& s) { s.setCounter("value", 5); }, {}},
+        {"adjust",
+         "",
+         [](const PhaseContext& ctx, Snapshot& s) {
+             s.setCounter("value", s.counter("value") + ctx.parameters.getInt("offset"));
+         },
+         {}},
+        {"finish", "", [](const PhaseContext&, Snapshot&) {}, {}},
+        {"after", "", [](const PhaseContext&, Snapshot&) {}, {}},
+    };
+    BranchRule rule;
+    rule.name = "toy";
+    rule.decideAfter = "finish";
+    rule.rerunFrom = "adjust";
+    rule.plan = [](const PhaseContext&, const Snapshot&) {
+        BranchPlan plan;
+        for (int offset : {1, -2, -1})
+            plan.variants.push_back({"offset " + std::to_string(offset), {{"offset", offset}}, {}});
+        return plan;
+    };
+    rule.figure = [](const Snapshot& s) {
+        return std::optional<double>(s.counter("value"));
+    };
+    rule.perfect = -100.0;
+    rule.report = [](const PhaseContext&, const BranchSummary&, Snapshot&) {
+        return std::string("toy branch decided");
+    };
+    m.branches.push_back(rule);
+    auto cage = std::make_shared<PolygonMesh>(makeSphere(1.0, 8));
+    Camera camera;
+    camera.eye = Vec3(3, 2, 4);
+    camera.target = Vec3(0, 0, 0);
+    Runner runner(m, makeInputSnapshot(cage), camera, ParameterSet::defaults(m.parameters));
+    runner.runToEnd();
+    PhaseStepper stepper;
+    stepper.setMethod(&m);
+    stepper.setSnapshots(runner.snapshots());
+    QVERIFY(stepper.displayedRun(0).isEmpty());
+    QVERIFY(stepper.displayedRun(3).isEmpty());
+    for (int phase : {1, 2}) {
+        QCOMPARE(stepper.displayedRun(phase),
+                 QStringLiteral("toy: run 2 of 3, adopted (offset -2)"));
+        const QStringList runs = stepper.displayedBranchRuns(phase);
+        QCOMPARE(runs.size(), 3);
+        QVERIFY(runs[0].startsWith(QStringLiteral("run 1: offset 1 — 6")));
+        QVERIFY(runs[0].endsWith(QStringLiteral("rejected")));
+        QVERIFY(runs[1].endsWith(QStringLiteral("post-conditions kept, adopted")));
+        QVERIFY(runs[2].endsWith(QStringLiteral("rejected")));
+    }
+    // Each phase of the range is inspectable as any phase: its counters.
+    bool sawValue = false;
+    for (const auto& [name, value] : stepper.displayedCounters(1))
+        if (name == QStringLiteral("value")) {
+            sawValue = true;
+            QCOMPARE(value, 3.0);
+        }
+    QVERIFY(sawValue);
+    QCOMPARE(stepper.displayedNotes(2), QStringList{QStringLiteral("toy branch decided")});
 }
 
 void TestMainWindow::switchesMethod() {

@@ -5,6 +5,8 @@
 
 #include <QtTest>
 #include <atomic>
+#include <memory>
+#include <optional>
 
 using namespace contour;
 
@@ -53,6 +55,82 @@ Method testMethod(std::atomic<int>* cancelChecks) {
              return std::vector<InvariantCheck>{{"nothing is wrong", 2, "face 0"}};
          }},
     };
+    return m;
+}
+// The runner whose cancel the toy branch's plan requests (null: none), as
+// the GUI's cancel button would while the variants run.
+Runner* gCancelDuringBranch = nullptr;
+
+// Branch data of the toy branch: the variant's tag, read by the re-run phase.
+struct ToyTag : BranchData {
+    explicit ToyTag(int t) : tag(t) {}
+    int tag;
+};
+
+// A method with a branch: "start" sets value 10, "adjust" adds the
+// parameter "offset" (and records the branch data's tag), "finish" keeps the
+// value and breaks its post-condition when it equals "bad", "after" records
+// the offset it sees. The branch, decided after "finish" and re-running from
+// "adjust", tries the offsets +1, -3, -2, -10 and -4 (and -5 with
+// "offer-broken" first) and judges the runs by their value; 0 is perfect.
+Method branchingMethod(std::atomic<int>* adjustRuns) {
+    Method m;
+    m.name = "branching";
+    m.parameters = {{"offset", "Offset", "", ParameterType::Int, 0, -20, 20, {}},
+                    {"bad", "Bad", "", ParameterType::Int, -100, -100, 100, {}},
+                    {"offer-broken", "Offer broken", "", ParameterType::Bool, false, 0, 0, {}}};
+    m.phases = {
+        {"start", "", [](const PhaseContext&, Snapshot& s) { s.setCounter("value", 10); }, {}},
+        {"adjust", "",
+         [adjustRuns](const PhaseContext& ctx, Snapshot& s) {
+             ++*adjustRuns;
+             ctx.checkCancelled();
+             s.setCounter("value", s.counter("value") + ctx.parameters.getInt("offset"));
+             const ToyTag* tag = ctx.branchData<ToyTag>();
+             s.setCounter("tag", tag ? tag->tag : -1);
+         },
+         [](const PhaseContext&, const Snapshot&) {
+             return std::vector<InvariantCheck>{{"adjusted", 0, ""}};
+         }},
+        {"finish", "", [](const PhaseContext&, Snapshot& s) { s.setCounter("finished", 1); },
+         [](const PhaseContext& ctx, const Snapshot& s) {
+             const bool bad = s.counter("value") == ctx.parameters.getInt("bad");
+             return std::vector<InvariantCheck>{{"value is not bad", bad ? 1 : 0, "value"}};
+         }},
+        {"after",
+         "",
+         [](const PhaseContext& ctx, Snapshot& s) {
+             s.setCounter("offset after", ctx.parameters.getInt("offset"));
+         },
+         {}},
+    };
+    BranchRule rule;
+    rule.name = "toy";
+    rule.decideAfter = "finish";
+    rule.rerunFrom = "adjust";
+    rule.plan = [](const PhaseContext& ctx, const Snapshot&) {
+        if (gCancelDuringBranch)
+            gCancelDuringBranch->requestCancel();
+        BranchPlan plan;
+        std::vector<int> offsets{1, -3, -2, -10, -4};
+        if (ctx.parameters.getBool("offer-broken"))
+            offsets.insert(offsets.begin(), -5);
+        for (int offset : offsets)
+            plan.variants.push_back({"offset " + std::to_string(offset),
+                                     {{"offset", offset}},
+                                     std::make_shared<const ToyTag>(100 + offset)});
+        return plan;
+    };
+    rule.figure = [](const Snapshot& s) {
+        return std::optional<double>(s.counter("value"));
+    };
+    rule.perfect = 0.0;
+    rule.report = [](const PhaseContext&, const BranchSummary& b, Snapshot& s) {
+        s.setCounter("toy runs", static_cast<double>(b.runs.size()));
+        s.setCounter("toy adopted", b.adopted);
+        return std::string("toy branch: run ") + std::to_string(b.adopted) + " adopted";
+    };
+    m.branches.push_back(rule);
     return m;
 }
 } // namespace
@@ -202,6 +280,142 @@ private slots:
         QCOMPARE(r.current().invariantViolations(), 2LL);
         QCOMPARE(QString::fromStdString(r.current().invariants[0].firstExample), QString("face 0"));
 #endif
+    }
+
+    // The branch runs its variants from the snapshot before rerunFrom,
+    // judges them in order (a run adopted when strictly better than the best
+    // so far; none judged after a perfect one), and the adopted run's own
+    // snapshots replace the range; later phases see the base parameters.
+    void branchAdoptsFirstBetterRunsInOrder() {
+        std::atomic<int> adjustRuns{0};
+        const Method m = branchingMethod(&adjustRuns);
+        Runner r(m, makeInputSnapshot(tetrahedron()), frontCamera(),
+                 ParameterSet::defaults(m.parameters));
+        r.runTo(2);
+        QCOMPARE(r.current().counter("value"), 10.0);
+        QVERIFY(!r.current().run.inBranch());
+        QVERIFY(r.step()); // finish: the branch is decided
+        QCOMPARE(r.completedPhases(), 3);
+        const auto summaries = r.branchSummaries();
+        QCOMPARE(summaries.size(), size_t{1});
+        const BranchSummary& b = *summaries[0];
+        QCOMPARE(b.firstFigure, 10.0);
+        // +1 (11) no better, -3 (7) adopted, -2 (8) no better than 7,
+        // -10 (0) adopted and perfect: -4 is not judged.
+        QCOMPARE(b.runs.size(), size_t{4});
+        QCOMPARE(b.adopted, 4);
+        QCOMPARE(QString::fromStdString(b.runs[3].label), QString("offset -10"));
+        QVERIFY(!b.runs[0].better && !b.runs[0].adopted);
+        QVERIFY(b.runs[1].better && !b.runs[1].adopted); // superseded by run 4
+        QVERIFY(!b.runs[2].better);
+        QVERIFY(b.runs[3].better && b.runs[3].adopted && b.runs[3].postconditionsKept);
+        QCOMPARE(*b.runs[1].figure, 7.0);
+        // The range is the adopted run's: value, tag (its branch data),
+        // post-conditions of every re-run phase, and the run marks.
+        for (int completed : {2, 3}) {
+            const Snapshot& s = r.snapshot(completed);
+            QCOMPARE(s.counter("value"), 0.0);
+            QCOMPARE(s.counter("tag"), 90.0);
+            QVERIFY(s.run.inBranch());
+            QCOMPARE(s.run.run, 4);
+            QCOMPARE(s.invariants.size(), size_t{1});
+            QCOMPARE(s.invariants[0].violations, 0LL);
+        }
+        QCOMPARE(QString::fromStdString(r.snapshot(2).run.describe()),
+                 QString("run 4 of 4, adopted (offset -10)"));
+        QVERIFY(!r.snapshot(1).run.inBranch());
+        QCOMPARE(r.snapshot(1).counter("value"), 10.0);
+        // The report on the decided snapshot, and the branch's note.
+        QCOMPARE(r.current().counter("toy runs"), 4.0);
+        QCOMPARE(r.current().counter("toy adopted"), 4.0);
+        QCOMPARE(r.current().notes.size(), size_t{1});
+        QCOMPARE(QString::fromStdString(r.current().notes[0]),
+                 QString("toy branch: run 4 adopted"));
+        QVERIFY(r.step());
+        QVERIFY(!r.current().run.inBranch());
+        QCOMPARE(r.current().counter("offset after"), 0.0);
+        QCOMPARE(r.current().counter("value"), 0.0);
+    }
+
+    // Going back inside the adopted range and stepping again re-runs with
+    // the adopted run's overrides (same snapshots, same report); going back
+    // before rerunFrom forgets the branch, and it is decided again.
+    void branchBackAndStepStayCoherent() {
+        std::atomic<int> adjustRuns{0};
+        const Method m = branchingMethod(&adjustRuns);
+        Runner r(m, makeInputSnapshot(tetrahedron()), frontCamera(),
+                 ParameterSet::defaults(m.parameters));
+        r.runToEnd();
+        const int afterFirst = adjustRuns.load();
+        QVERIFY(afterFirst >= 5); // the first run and 4 judged variants at least
+        r.runTo(2);
+        QCOMPARE(r.branchSummaries().size(), size_t{1});
+        QCOMPARE(r.current().counter("value"), 0.0);
+        QVERIFY(r.step()); // finish again: not re-decided
+        QCOMPARE(adjustRuns.load(), afterFirst);
+        QCOMPARE(r.current().counter("value"), 0.0);
+        QCOMPARE(r.current().counter("toy adopted"), 4.0);
+        QCOMPARE(r.current().notes.size(), size_t{1});
+        QCOMPARE(r.current().run.run, 4);
+        r.runTo(1);
+        QVERIFY(r.branchSummaries().empty());
+        QVERIFY(r.step()); // adjust with the base parameters
+        QCOMPARE(adjustRuns.load(), afterFirst + 1);
+        QCOMPARE(r.current().counter("value"), 10.0);
+        QCOMPARE(r.current().counter("tag"), -1.0);
+        QVERIFY(!r.current().run.inBranch());
+        QVERIFY(r.step()); // decided again, the same way
+        QCOMPARE(r.branchSummaries().size(), size_t{1});
+        QCOMPARE(r.branchSummaries()[0]->adopted, 4);
+        QCOMPARE(r.current().counter("value"), 0.0);
+        r.reset();
+        QVERIFY(r.branchSummaries().empty());
+    }
+
+    // A run strictly better that breaks a re-run phase's post-condition is
+    // not adopted (Release; builds that check invariants fail the step and
+    // keep the state).
+    void branchRejectsRunsBreakingPostconditions() {
+        std::atomic<int> adjustRuns{0};
+        const Method m = branchingMethod(&adjustRuns);
+        ParameterSet p = ParameterSet::defaults(m.parameters);
+        p.set("offer-broken", true);
+        p.set("bad", 5); // offset -5 ends at value 5
+        Runner r(m, makeInputSnapshot(tetrahedron()), frontCamera(), p);
+        r.runTo(2);
+#ifdef CONTOUR_CHECK_INVARIANTS
+        QVERIFY_THROWS_EXCEPTION(PhaseError, r.step());
+        QCOMPARE(r.completedPhases(), 2);
+        QVERIFY(r.branchSummaries().empty());
+#else
+        QVERIFY(r.step());
+        const BranchSummary& b = *r.branchSummaries().at(0);
+        QCOMPARE(b.runs.size(), size_t{5});
+        QVERIFY(b.runs[0].better && !b.runs[0].postconditionsKept && !b.runs[0].adopted);
+        QVERIFY(b.runs[2].adopted == false && b.runs[4].adopted);
+        QCOMPARE(b.adopted, 5);
+        QCOMPARE(r.current().counter("value"), 0.0);
+#endif
+    }
+
+    // A cancel request reaches the variant runs; the state is unchanged
+    // and a new step decides the branch.
+    void branchCancellation() {
+        std::atomic<int> adjustRuns{0};
+        const Method m = branchingMethod(&adjustRuns);
+        Runner r(m, makeInputSnapshot(tetrahedron()), frontCamera(),
+                 ParameterSet::defaults(m.parameters));
+        r.runTo(2);
+        gCancelDuringBranch = &r;
+        QVERIFY_THROWS_EXCEPTION(PhaseCancelled, r.step());
+        gCancelDuringBranch = nullptr;
+        QCOMPARE(r.completedPhases(), 2);
+        QVERIFY(r.branchSummaries().empty());
+        QCOMPARE(r.current().counter("value"), 10.0);
+        QVERIFY(!r.current().run.inBranch());
+        QVERIFY(r.step());
+        QCOMPARE(r.branchSummaries().size(), size_t{1});
+        QCOMPARE(r.current().counter("value"), 0.0);
     }
 };
 

@@ -20,7 +20,9 @@ enum RowKind {
     kInvariantRow = 2,
     kNoteRow = 3,
     kUnchangedGroupRow = 4,
-    kUnchangedCounterRow = 5
+    kUnchangedCounterRow = 5,
+    kRunRow = 6,
+    kBranchRunRow = 7
 };
 
 QString formatValue(double value) {
@@ -61,8 +63,48 @@ QTreeWidgetItem* addCounterRow(QTreeWidgetItem* parent, const Counter& c, RowKin
     return row;
 }
 
+// "run 2: rings 0, levels 1 — 3, post-conditions kept, adopted".
+QString describeBranchRun(const BranchSummary& b, size_t k) {
+    const BranchRunSummary& r = b.runs[k];
+    QString text = QStringLiteral("run %1").arg(k + 1);
+    if (!r.label.empty())
+        text += QStringLiteral(": %1").arg(QString::fromStdString(r.label));
+    text += QStringLiteral(" — %1").arg(r.figure ? formatValue(*r.figure) : QStringLiteral("?"));
+    text += r.postconditionsKept ? QStringLiteral(", post-conditions kept")
+                                 : QStringLiteral(", a post-condition broken");
+    text += r.adopted ? QStringLiteral(", adopted") : QStringLiteral(", rejected");
+    return text;
+}
+
+// Within a branch's range: which run the snapshot is, and every run the
+// branch judged (a child row each, also in the tooltip).
+void addRunRows(QTreeWidgetItem* item, const RunInfo& run) {
+    const BranchSummary& b = *run.branch;
+    auto* row = new QTreeWidgetItem(item);
+    row->setText(0, QStringLiteral("%1: %2").arg(QString::fromStdString(b.rule),
+                                                 QString::fromStdString(run.describe())));
+    row->setData(0, kKindRole, kRunRow);
+    row->setForeground(0, QColor(30, 90, 180));
+    row->setFirstColumnSpanned(true);
+    QStringList lines{QStringLiteral("Branch %1: phases %2 to %3 re-run; first run %4")
+                          .arg(QString::fromStdString(b.rule), QString::fromStdString(b.rerunFrom),
+                               QString::fromStdString(b.decideAfter), formatValue(b.firstFigure))};
+    for (size_t k = 0; k < b.runs.size(); ++k) {
+        auto* child = new QTreeWidgetItem(row);
+        child->setText(0, describeBranchRun(b, k));
+        child->setData(0, kKindRole, kBranchRunRow);
+        child->setFirstColumnSpanned(true);
+        if (!b.runs[k].adopted)
+            child->setForeground(0, QColor(120, 120, 120));
+        lines << child->text(0);
+    }
+    row->setToolTip(0, lines.join('\n'));
+}
+
 void fillDetails(QTreeWidgetItem* item, const CounterSplit& counters, const Snapshot& snapshot) {
     qDeleteAll(item->takeChildren());
+    if (snapshot.run.inBranch())
+        addRunRows(item, snapshot.run);
     for (const Counter& c : counters.changed)
         addCounterRow(item, c, kCounterRow);
     // The state the phase left unchanged (e.g. the consistent method's
@@ -249,6 +291,24 @@ QStringList PhaseStepper::displayedNotes(int phase) const {
     return notes;
 }
 
+QString PhaseStepper::displayedRun(int phase) const {
+    const QTreeWidgetItem* item = phaseItem(phase);
+    for (int i = 0; item && i < item->childCount(); ++i)
+        if (item->child(i)->data(0, kKindRole).toInt() == kRunRow)
+            return item->child(i)->text(0);
+    return {};
+}
+
+QStringList PhaseStepper::displayedBranchRuns(int phase) const {
+    QStringList runs;
+    const QTreeWidgetItem* item = phaseItem(phase);
+    for (int i = 0; item && i < item->childCount(); ++i)
+        if (item->child(i)->data(0, kKindRole).toInt() == kRunRow)
+            for (int j = 0; j < item->child(i)->childCount(); ++j)
+                runs << item->child(i)->child(j)->text(0);
+    return runs;
+}
+
 QString PhaseStepper::displayedTime(int phase) const {
     const QTreeWidgetItem* item = phaseItem(phase);
     return item ? item->text(2) : QString();
@@ -292,6 +352,11 @@ void PhaseStepper::refresh() {
             fillDetails(item, splitCounters(&snapshots_[phase], after), after);
             if (after.invariantViolations() > 0)
                 item->setForeground(1, QColor(200, 30, 30));
+            // A phase of a branch's range: its run in the state column.
+            if (after.run.inBranch())
+                item->setText(
+                    1, QStringLiteral("%1 · %2").arg(toString(state),
+                                                     QString::fromStdString(after.run.describe())));
         } else {
             item->setText(2, QString());
             qDeleteAll(item->takeChildren());

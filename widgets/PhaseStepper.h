@@ -2,7 +2,9 @@
 // Lists a method's phases with their state (done / current / pending, or
 // running), and for each phase that has run its time, the counters it set or
 // changed, the other counters of its snapshot (unchanged, in a collapsed
-// group), its post-condition violations and its notes. Buttons ask to reset,
+// group), its post-condition violations and its notes; within a branch's
+// range (pipeline/Branch.h) which run it shows ("run 2 of 3, adopted") and
+// every run the branch judged. Buttons ask to reset,
 // step back, step, or run to the end; the owner runs the phases.
 #include "pipeline/Method.h"
 #include "pipeline/Snapshot.h"
@@ -46,6 +48,10 @@ public:
                                                               bool includeUnchanged = false) const;
     QStringList displayedNotes(int phase) const;
     QString displayedTime(int phase) const;
+    // Within a branch's range: the run row ("cusp-retry: run 2 of 3,
+    // adopted (…)"), and one line per run judged; empty elsewhere.
+    QString displayedRun(int phase) const;
+    QStringList displayedBranchRuns(int phase) const;
 
     QPushButton* resetButton() const { return reset_; }
     QPushButton* backButton() const { return back_; }

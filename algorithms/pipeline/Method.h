@@ -3,6 +3,7 @@
 // ordered phases. The GUI and the CLI step every method the same way through
 // Runner.
 #include "camera/Camera.h"
+#include "pipeline/Branch.h"
 #include "pipeline/MethodOutputs.h"
 #include "pipeline/Parameters.h"
 #include "pipeline/Snapshot.h"
@@ -24,9 +25,10 @@ class PhaseContext {
 public:
     PhaseContext(const Camera& analysisCamera, const ParameterSet& parameterValues,
                  const std::atomic<bool>* cancelFlag = nullptr,
-                 std::function<void(double)> progress = {})
+                 std::function<void(double)> progress = {},
+                 std::shared_ptr<const BranchData> branchData = nullptr)
         : camera(analysisCamera), parameters(parameterValues), cancelFlag_(cancelFlag),
-          progress_(std::move(progress)) {}
+          progress_(std::move(progress)), branchData_(std::move(branchData)) {}
 
     const Camera& camera;
     const ParameterSet& parameters;
@@ -40,10 +42,16 @@ public:
         if (progress_)
             progress_(fraction);
     }
+    // The data of the branch variant being run (Branch.h) as T, or null
+    // outside a branch's variant run.
+    template <typename T> const T* branchData() const {
+        return dynamic_cast<const T*>(branchData_.get());
+    }
 
 private:
     const std::atomic<bool>* cancelFlag_;
     std::function<void(double)> progress_;
+    std::shared_ptr<const BranchData> branchData_;
 };
 
 struct Phase {
@@ -75,6 +83,8 @@ struct Method {
     // The preset called `presetName`, or null.
     const ParameterPreset* preset(const std::string& presetName) const;
     MethodOutputs outputs; // what the method adds to the reports (MethodOutputs.h)
+    // Decided by the runner after a phase (Branch.h); ranges do not overlap.
+    std::vector<BranchRule> branches;
 
     const ParameterSpec* parameter(const std::string& parameterName) const;
     // Index in `phases` of the phase called `phaseName`, or -1. Phases are

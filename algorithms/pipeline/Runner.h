@@ -3,10 +3,21 @@
 // step forward and back, jump to a phase, run to the end, or cancel. Not
 // thread-safe: the GUI calls it from one worker thread at a time and reads
 // the snapshots (which are immutable) once a call returns.
+//
+// A method's branch rules (Branch.h) are decided here: the step that runs a
+// rule's `decideAfter` phase also runs the rule's variants of the phases
+// `rerunFrom`..`decideAfter` from the snapshot before `rerunFrom` and, when
+// one is adopted, replaces that range with the adopted run's snapshots.
+// Stepping again through the range (after back()) re-runs its phases with
+// the adopted run's overrides and data, so every snapshot stays the one
+// before it plus its phase; stepping back before `rerunFrom` forgets the
+// decision.
 #include "pipeline/Method.h"
 
 #include <atomic>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -51,6 +62,10 @@ public:
     void runTo(int completed);
     void runToEnd() { runTo(phaseCount()); }
 
+    // The branches decided so far (their runs, figures and post-conditions,
+    // which one was adopted), in the order of their ranges.
+    std::vector<std::shared_ptr<const BranchSummary>> branchSummaries() const;
+
     void requestCancel() { cancel_ = true; }
     // Called with (phase index, fraction done) from the running thread.
     void setProgressCallback(std::function<void(int, double)> callback) {
@@ -58,10 +73,33 @@ public:
     }
 
 private:
+    struct Range {
+        int from = 0, to = 0; // phase indices of rerunFrom and decideAfter
+    };
+    struct Decision {
+        size_t rule = 0;
+        std::shared_ptr<const BranchSummary> summary;
+        std::optional<BranchVariant> adopted; // none: the first run is kept
+        ParameterSet parameters;              // parameters_ with the adopted overrides
+    };
+
+    // Phase `index` on a copy of `previous`: timed, post-conditions counted
+    // (and enforced in builds that check invariants).
+    Snapshot runPhase(int index, const PhaseContext& context, const Snapshot& previous) const;
+    std::function<void(double)> progressOf(int index);
+    const Decision* decisionContaining(int index) const;
+    // Runs rule `rule`'s variants; `decided` is the first run's snapshot
+    // after decideAfter, replaced by the adopted run's when one is adopted
+    // (then `replaced` gets the adopted run's earlier snapshots of the range).
+    Decision decide(size_t rule, const PhaseContext& baseContext, Snapshot& decided,
+                    std::vector<Snapshot>& replaced);
+
     const Method* method_;
     Camera camera_;
     ParameterSet parameters_;
     std::vector<Snapshot> snapshots_;
+    std::vector<Range> ranges_; // one per method_->branches
+    std::vector<Decision> decisions_;
     std::atomic<bool> cancel_{false};
     std::function<void(int, double)> progress_;
 };

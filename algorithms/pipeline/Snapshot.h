@@ -7,6 +7,7 @@
 #include "mesh/PolygonMesh.h"
 #include "pipeline/CounterNames.h"
 #include "pipeline/Curve.h"
+#include "pipeline/RunInfo.h"
 #include "pipeline/ViewGraph.h"
 
 #include <map>
@@ -63,6 +64,8 @@ struct Snapshot {
     std::vector<Counter> counters;
     std::vector<InvariantCheck> invariants;
     std::vector<std::string> notes; // honest remarks a user should see
+    // Within a branch's range (Branch.h): which run this snapshot belongs to.
+    RunInfo run;
 
     // Optional working data a method publishes alongside the fields, so that
     // its next phase need not rebuild it (the consistent method's evaluated

@@ -4,9 +4,9 @@
 // phases come from the sub-phase files, in the paper's order (§6).
 #include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentOutputs.h"
 #include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "visibility/SimplificationPhase.h"
 #include "visibility/VisibilityPhase.h"
 
@@ -92,8 +92,12 @@ Method makeConsistentContourMethod() {
     addVertexRemovalPhase(m);
     addPatchSearchPhase(m);
     addNormalWigglePhase(m);
+    addCuspEndPushPhase(m);
+    addCuspEndRetriangulationPhase(m);
     addContourRefinementPhase(m);
-    addCuspRetryPhase(m); // reruns the phases above: keep it after them
+    addContourRefinementRetriangulationPhase(m);
+    // Decided after the last phase so far, re-runs from cusp-refinement.
+    addCuspRetryBranch(m);
     addChainingPhase(m);
     addVisibilityPhase(m, VisibilityFlavor::Consistent);
     addSimplificationPhase(m);

@@ -9,11 +9,10 @@
 // acceptance rule, not strictly better: the move is for accuracy). It runs
 // after the last optimization so that no move of §6.4 has to work around the
 // new vertices.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/numerics/ContourCuspSearch.h"
-#include "contours/consistent/edits/CuspEndRetriangulation.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/numerics/ContourCuspSearch.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 
 #include <algorithm>
@@ -72,17 +71,32 @@ std::optional<MeshVertex> contourPointBeside(const ConsistentMesh& m, Index a, I
     return m.evaluate(point->preimage);
 }
 
+struct ContourRefinementOptions {
+    double pixels = 0.5; // contour-refinement-pixels (0: off)
+    int maxDepth = 3;    // contour-refinement-depth
+    double rootTolerance = 0.0;
+    int rootIterations = 100;
+};
+
+// root-tolerance and root-max-iterations are contour insertion's (§6.2 e),
+// the bound its post-condition checks.
+ContourRefinementOptions contourRefinementOptions(const ParameterSet& p) {
+    return {p.getDouble("contour-refinement-pixels"), p.getInt("contour-refinement-depth"),
+            p.getDouble("root-tolerance"), p.getInt("root-max-iterations")};
+}
+
 void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
+    const ContourRefinementOptions o = contourRefinementOptions(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
-    const double pixels = ctx.parameters.getDouble("contour-refinement-pixels");
-    const int maxDepth = ctx.parameters.getInt("contour-refinement-depth");
+    const double pixels = o.pixels;
+    const int maxDepth = o.maxDepth;
     // As contour insertion (§6.2 e): half the checked |g| bound, which is
     // relative to the diagonal after the phase.
-    const double tol = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
+    const double tol = 0.5 * o.rootTolerance * sceneScale(m);
     ContourCuspOptions options;
     options.gTolerance = tol;
-    options.maxRootIterations = ctx.parameters.getInt("root-max-iterations");
+    options.maxRootIterations = o.rootIterations;
     RefinementStats st;
     const Camera& camera = m.camera();
     struct Item {
@@ -147,13 +161,9 @@ void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
         work.push_back({v, item.b, item.depth + 1});
     }
     // The C vertices added give the discs at a cusp's radial end new
-    // outlines: searched again (cusp-end-retriangulation-faces, as after the
-    // normal wiggle).
-    const CuspEndRetriangulationCounts retri = retriangulateAtCuspEnds(
-        ctx, m, ctx.parameters.getInt("cusp-end-retriangulation-faces"), phase);
+    // outlines: the next phase (contour-refinement-retriangulation)
+    // searches them again.
     publish(s, m);
-    s.setCounter("discs re-triangulated at a cusp's radial end",
-                 static_cast<double>(retri.applied));
     s.setCounter("contour edges measured", static_cast<double>(st.measured));
     s.setCounter("contour edges farther than contour-refinement-pixels",
                  static_cast<double>(st.farther));

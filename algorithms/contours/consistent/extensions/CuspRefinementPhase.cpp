@@ -1,20 +1,42 @@
-// Cusp refinement around every cusp (not in the paper; CuspRefinement.h),
-// between cusp detection (§6.2 d) and contour insertion (§6.2 e).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+// Cusp refinement (not in the paper; CuspRefinement.h), between cusp
+// detection (§6.2 d) and contour insertion (§6.2 e): around every cusp with
+// cusp-refinement, and in a cusp retry's run (CuspRetryBranch.cpp) first
+// around the cusps its branch data selects.
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/CuspRefinement.h"
+#include "contours/consistent/extensions/CuspRefinementTargets.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+
+#include <string>
 
 namespace contour::consistent {
 
 namespace {
 
+struct CuspRefinementOptions {
+    bool everyCusp = false; // cusp-refinement
+    CuspRefinementSettings settings;
+};
+
+CuspRefinementOptions cuspRefinementOptions(const ParameterSet& p) {
+    return {p.getBool("cusp-refinement"), cuspRefinementSettings(p)};
+}
+
 void runCuspRefinement(const PhaseContext& ctx, Snapshot& s) {
+    const CuspRefinementOptions o = cuspRefinementOptions(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
-    CuspRefinementCounts n;
-    if (ctx.parameters.getBool("cusp-refinement"))
+    if (const auto* targets = ctx.branchData<CuspRefinementTargets>()) {
+        CuspRefinementCounts t;
         refineAroundCusps(
-            m, cuspRefinementSettings(ctx.parameters), [](const Vec3&) { return true; },
-            s.phaseIndex, n);
+            m, o.settings, [&](const Vec3& cusp) { return targets->selects(ctx.camera, cusp); },
+            s.phaseIndex, t);
+        s.setCounter(counters::kCuspRetryCusps, static_cast<double>(t.cusps));
+        s.setCounter(counters::kCuspRetryEdgesHalved, static_cast<double>(t.splits));
+    }
+    CuspRefinementCounts n;
+    if (o.everyCusp)
+        refineAroundCusps(
+            m, o.settings, [](const Vec3&) { return true; }, s.phaseIndex, n);
     publish(s, m);
     publishCuspRefinementCounts(s, n);
 }
@@ -24,6 +46,33 @@ std::vector<InvariantCheck> checkCuspRefinement(const PhaseContext& ctx, const S
 }
 
 } // namespace
+
+bool CuspRefinementTargets::selects(const Camera& camera, const Vec3& cusp) const {
+    const Vec2 q = camera.project(cusp).pixel;
+    for (const Vec2& p : at)
+        if ((p - q).norm() <= pixels)
+            return true;
+    return false;
+}
+
+std::vector<BranchVariant>
+cuspRefinementVariants(const ParameterSet& p, bool every,
+                       std::shared_ptr<const CuspRefinementTargets> targets) {
+    const CuspRefinementSettings set = cuspRefinementOptions(p).settings;
+    const auto variant = [&](int rings, int levels) {
+        return BranchVariant{"rings " + std::to_string(rings) + ", levels " +
+                                 std::to_string(levels),
+                             {{"cusp-refinement-rings", rings}, {"cusp-refinement-levels", levels}},
+                             targets};
+    };
+    std::vector<BranchVariant> out{variant(set.rings, set.levels)};
+    if (every)
+        for (int levels = 1; levels <= set.levels; ++levels)
+            for (int rings = 0; rings <= set.rings; ++rings)
+                if (rings != set.rings || levels != set.levels)
+                    out.push_back(variant(rings, levels));
+    return out;
+}
 
 void addCuspRefinementPhase(Method& m) {
     m.parameters.push_back(

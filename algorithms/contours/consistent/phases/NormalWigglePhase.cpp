@@ -1,11 +1,10 @@
 // Vertex wiggling in the normal direction (Bénard 2014 §6.4, final step;
 // notes §2.4.5): vertices may leave the limit surface.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/edits/CuspEndRetriangulation.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/phases/NormalWiggle.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
-#include "contours/consistent/phases/RadialExtension.h"
 
 #include <algorithm>
 #include <array>
@@ -42,10 +41,6 @@ double imageShift(const Camera& camera, const Vec3& a, const Vec3& b) {
     return (camera.project(a).pixel - camera.project(b).pixel).norm();
 }
 
-struct NormalStats {
-    long long rejectedFold = 0, pairsTried = 0, pairsAccepted = 0, ringPairsAccepted = 0;
-};
-
 // The offsets tried at a vertex whose largest offset is `bound`: `samples`
 // even offsets (pairs ±α in increasing |α|) and `fine` offsets of each sign
 // below the even step, log-uniformly over six decades; increasing |α|, +
@@ -81,7 +76,7 @@ std::vector<double> normalOffsets(double bound, int samples, int fine) {
 // is a very thin image wedge: the uniform step jumps over it (torus, 26
 // views: 24 inside-fan faces left with 100 offsets, 8 with 400).
 bool wiggleAlongNormal(ConsistentMesh& m, Index v, int samples, int fine, double fraction,
-                       int phase, NormalStats& st) {
+                       int phase, NormalWiggleStats& st) {
     const MeshVertex current = m.vertex(v);
     const std::vector<Index> star = m.vertexFaces(v);
     LocalEdit edit(m);
@@ -141,7 +136,7 @@ bool wiggleAlongNormal(ConsistentMesh& m, Index v, int samples, int fine, double
 // `maxContourShift` (pixels): offsets that would move a C vertex (the
 // contour drawn) farther than this in the image are not tried.
 bool wigglePairAlongNormal(ConsistentMesh& m, Index a, Index b, int samples, double fraction,
-                           int phase, NormalStats& st,
+                           int phase, NormalWiggleStats& st,
                            double maxContourShift = std::numeric_limits<double>::infinity()) {
     // The union of the stars in three parts: the faces of a alone (they
     // depend on a's offset only), of b alone, and of both (the two faces
@@ -235,25 +230,14 @@ bool wigglePairAlongNormal(ConsistentMesh& m, Index a, Index b, int samples, dou
 }
 
 void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
+    const NormalWiggleOptions o = normalWiggleOptions(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
-    const int samples = ctx.parameters.getInt("normal-wiggle-samples");
-    const int fine = ctx.parameters.getInt("normal-wiggle-fine-offsets");
-    const double fraction = ctx.parameters.getDouble("normal-wiggle-max-offset");
-    const int maxSweeps = ctx.parameters.getInt("normal-wiggle-max-sweeps");
     OptimizationTally tally;
-    NormalStats st;
-    sweepInconsistent(ctx, m, maxSweeps, true, tally, [&](Index v) {
-        return wiggleAlongNormal(m, v, samples, fine, fraction, phase, st);
-    });
+    NormalWiggleStats st;
+    wiggleVertices(ctx, m, o, phase, tally, st);
     // Then pairs, each accepted pair followed by single moves again.
-    const int pairSamples = ctx.parameters.getInt("normal-wiggle-pair-offsets");
-    const bool ringPairs = ctx.parameters.getBool("normal-wiggle-ring-pairs");
-    // 0: no bound.
-    double ringShift = ctx.parameters.getDouble("normal-wiggle-ring-pair-shift");
-    if (ringShift <= 0.0)
-        ringShift = std::numeric_limits<double>::infinity();
-    for (int sweep = 0; pairSamples > 0 && sweep < maxSweeps; ++sweep) {
+    for (int sweep = 0; o.pairSamples > 0 && sweep < o.maxSweeps; ++sweep) {
         bool progress = false;
         for (Index f : inconsistentFaces(m)) {
             ctx.checkCancelled();
@@ -261,7 +245,7 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
                 continue;
             const Triangle t = m.face(f);
             for (int i = 0; i < 3 && !progress; ++i)
-                progress = wigglePairAlongNormal(m, t[i], t[(i + 1) % 3], pairSamples, fraction,
+                progress = wigglePairAlongNormal(m, t[i], t[(i + 1) % 3], o.pairSamples, o.fraction,
                                                  phase, st);
         }
         // Once the face's own edges give nothing: a corner of the face
@@ -273,7 +257,7 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
         // the radial edge moved as a whole shifts the strip, and the face
         // q-q'-y beyond it (y just on the wrong side of the chord q-q')
         // turns the right way.
-        for (Index f : progress || !ringPairs ? std::vector<Index>{} : inconsistentFaces(m)) {
+        for (Index f : progress || !o.ringPairs ? std::vector<Index>{} : inconsistentFaces(m)) {
             ctx.checkCancelled();
             if (faceIsConsistent(m, f))
                 continue;
@@ -282,8 +266,8 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
                 for (Index b : m.neighbours(t[i])) {
                     if (b == t[0] || b == t[1] || b == t[2])
                         continue;
-                    progress = wigglePairAlongNormal(m, t[i], b, pairSamples, fraction, phase, st,
-                                                     ringShift);
+                    progress = wigglePairAlongNormal(m, t[i], b, o.pairSamples, o.fraction, phase,
+                                                     st, o.ringShift);
                     if (progress) {
                         ++st.ringPairsAccepted;
                         break;
@@ -293,70 +277,73 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
         if (!progress)
             break;
         OptimizationTally again;
-        sweepInconsistent(ctx, m, maxSweeps, true, again, [&](Index v) {
-            return wiggleAlongNormal(m, v, samples, fine, fraction, phase, st);
-        });
+        wiggleVertices(ctx, m, o, phase, again, st);
         tally.tried += again.tried;
         tally.accepted += again.accepted;
     }
-    // The cusps' radial ends pushed along their radial curves once more
-    // (radial edge extension, extension-cusp-push-final), then single
-    // offsets again around what moved.
-    CuspPushCounts push;
-    if (ctx.parameters.getBool("extension-cusp-push-final")) {
-        push = pushCuspRadialEnds(ctx, m, phase);
-        if (push.moved > 0) {
-            OptimizationTally again;
-            sweepInconsistent(ctx, m, maxSweeps, true, again, [&](Index v) {
-                return wiggleAlongNormal(m, v, samples, fine, fraction, phase, st);
-            });
-            tally.tried += again.tried;
-            tally.accepted += again.accepted;
-        }
-    }
-    // Discs of faces around the inconsistent faces at a cusp's radial end,
-    // re-triangulated (cusp-end-retriangulation-faces), last: vertices do
-    // not move, only edges inside the disc, so no other face changes.
-    const CuspEndRetriangulationCounts retri = retriangulateAtCuspEnds(
-        ctx, m, ctx.parameters.getInt("cusp-end-retriangulation-faces"), phase);
-    double largest = 0.0, contourShift = 0.0;
-    long long offVertices = 0;
-    for (Index v = 0; v < m.vertexCount(); ++v) {
-        const MeshVertex& x = m.vertex(v);
-        const double bound = offsetBound(m, v, 1.0);
-        offVertices += x.normalOffset != 0.0;
-        if (bound > 0.0)
-            largest = std::max(largest, std::abs(x.normalOffset) / bound);
-        // How far the drawn contour moved: a C vertex off the surface.
-        if (x.label == VertexLabel::Contour && x.normalOffset != 0.0)
-            contourShift = std::max(contourShift, imageShift(m.camera(), x.position, onSurface(x)));
-    }
+    const NormalOffsetStats offsets = normalOffsetStats(m);
     publish(s, m);
     publishTally(s, tally, "vertices", "normal-wiggle-max-sweeps");
-    s.setCounter("vertices off the surface", static_cast<double>(offVertices));
-    s.setCounter("largest offset / mean one-ring distance", largest);
-    s.setCounter("largest image shift of a C vertex off the surface (px)", contourShift);
+    publishNormalOffsetStats(s, offsets);
     s.setCounter("offsets rejected (3D fold)", static_cast<double>(st.rejectedFold));
     s.setCounter("vertex pairs tried", static_cast<double>(st.pairsTried));
     s.setCounter("vertex pairs moved", static_cast<double>(st.pairsAccepted));
     s.setCounter("of them, a corner and a neighbour off the face (normal-wiggle-ring-pairs)",
                  static_cast<double>(st.ringPairsAccepted));
-    s.setCounter("cusp radial ends pushed (extension-cusp-push-final)",
-                 static_cast<double>(push.moved - push.everyEndMoved));
-    s.setCounter("other radial ends pushed (extension-push-every-end-final)",
-                 static_cast<double>(push.everyEndMoved));
-    s.setCounter("faces at a cusp's radial end searched (cusp-end-retriangulation-faces)",
-                 static_cast<double>(retri.faces));
-    s.setCounter("discs re-triangulated at a cusp's radial end",
-                 static_cast<double>(retri.applied));
+}
+
+} // namespace
+
+NormalWiggleOptions normalWiggleOptions(const ParameterSet& p) {
+    NormalWiggleOptions o;
+    o.samples = p.getInt("normal-wiggle-samples");
+    o.fine = p.getInt("normal-wiggle-fine-offsets");
+    o.fraction = p.getDouble("normal-wiggle-max-offset");
+    o.maxSweeps = p.getInt("normal-wiggle-max-sweeps");
+    o.pairSamples = p.getInt("normal-wiggle-pair-offsets");
+    o.ringPairs = p.getBool("normal-wiggle-ring-pairs");
+    // 0: no bound.
+    o.ringShift = p.getDouble("normal-wiggle-ring-pair-shift");
+    if (o.ringShift <= 0.0)
+        o.ringShift = std::numeric_limits<double>::infinity();
+    return o;
+}
+
+void wiggleVertices(const PhaseContext& ctx, ConsistentMesh& m, const NormalWiggleOptions& o,
+                    int phase, OptimizationTally& tally, NormalWiggleStats& st) {
+    sweepInconsistent(ctx, m, o.maxSweeps, true, tally, [&](Index v) {
+        return wiggleAlongNormal(m, v, o.samples, o.fine, o.fraction, phase, st);
+    });
+}
+
+NormalOffsetStats normalOffsetStats(const ConsistentMesh& m) {
+    NormalOffsetStats out;
+    for (Index v = 0; v < m.vertexCount(); ++v) {
+        const MeshVertex& x = m.vertex(v);
+        const double bound = offsetBound(m, v, 1.0);
+        out.offVertices += x.normalOffset != 0.0;
+        if (bound > 0.0)
+            out.largest = std::max(out.largest, std::abs(x.normalOffset) / bound);
+        // How far the drawn contour moved: a C vertex off the surface.
+        if (x.label == VertexLabel::Contour && x.normalOffset != 0.0)
+            out.contourShift =
+                std::max(out.contourShift, imageShift(m.camera(), x.position, onSurface(x)));
+    }
+    return out;
+}
+
+void publishNormalOffsetStats(Snapshot& s, const NormalOffsetStats& n) {
+    s.setCounter(counters::kVerticesOffSurface, static_cast<double>(n.offVertices));
+    s.setCounter(counters::kLargestNormalOffsetRatio, n.largest);
+    s.setCounter(counters::kLargestContourShift, n.contourShift);
 }
 
 // Notes §6.1 item 2: |α| <= the mean one-ring distance (times
 // normal-wiggle-max-offset).
-std::vector<InvariantCheck> checkNormalWiggle(const PhaseContext& ctx, const Snapshot& s) {
+std::vector<InvariantCheck> normalWiggleChecks(const PhaseContext& ctx, const Snapshot& s) {
     std::vector<InvariantCheck> out = optimizationChecks(ctx, s, false);
     const ConsistentMesh m = reload(ctx, s);
-    const double fraction = ctx.parameters.getDouble("normal-wiggle-max-offset");
+    const double fraction = normalWiggleOptions(ctx.parameters).fraction;
     InvariantCheck bound = check("every normal offset is at most normal-wiggle-max-offset times "
                                  "the mean distance to the one-ring (§6.4)");
     for (Index v = 0; v < m.vertexCount(); ++v) {
@@ -369,8 +356,6 @@ std::vector<InvariantCheck> checkNormalWiggle(const PhaseContext& ctx, const Sna
     out.push_back(bound);
     return out;
 }
-
-} // namespace
 
 void addNormalWigglePhase(Method& m) {
     m.parameters.push_back({"normal-wiggle-samples",
@@ -440,18 +425,6 @@ void addNormalWigglePhase(Method& m) {
          100.0,
          {}});
     m.parameters.push_back(
-        {"cusp-end-retriangulation-faces",
-         "Cusp radial ends: disc re-triangulation",
-         "Not in the paper: after the normal wiggle and after contour refinement, each "
-         "face still inconsistent at the far end of a cusp's radial edge (Fig. 18e) is "
-         "searched for a disc of up to this many faces whose re-triangulation has fewer "
-         "inconsistent faces. 0: off.",
-         ParameterType::Int,
-         6,
-         0,
-         8,
-         {}});
-    m.parameters.push_back(
         {"normal-wiggle-max-sweeps",
          "Normal wiggle: sweeps",
          "Largest number of sweeps over the vertices of inconsistent faces in the normal "
@@ -467,7 +440,7 @@ void addNormalWigglePhase(Method& m) {
          "moves to f(u) + α n(u), α among normal-wiggle-samples offsets up to the mean "
          "one-ring distance, leaving the fewest inconsistent faces around it (strictly fewer), "
          "ties to the smallest |α|; no face turns over in 3D; sweeps until nothing improves.",
-         runNormalWiggle, checkNormalWiggle});
+         runNormalWiggle, normalWiggleChecks});
 }
 
 } // namespace contour::consistent

@@ -2,12 +2,12 @@
 // §2.4.1): inconsistent faces just beyond the radial strip are fixed by
 // sliding the far end of a radial edge along its radial curve and flipping
 // the edge opposite it.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/phases/RadialExtension.h"
-#include "contours/consistent/edits/RadialTriangles.h"
 
 #include <algorithm>
 #include <array>
@@ -731,7 +731,8 @@ std::vector<InvariantCheck> checkRadialExtension(const PhaseContext& ctx, const 
 
 } // namespace
 
-CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, int phase) {
+CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, int phase,
+                                  bool everyEnd) {
     const ExtensionSettings set = extensionSettings(ctx, m);
     Extender ext(m, set, phase);
     CuspPushCounts out;
@@ -743,7 +744,7 @@ CuspPushCounts pushCuspRadialEnds(const PhaseContext& ctx, ConsistentMesh& m, in
     // push, kept only with fewer inconsistent faces, pre-empts no other move.
     // Earlier, with the cusps' pushes, 2 views of 26 ended worse (spot).
     const long long cuspMoves = ext.stats.pushMoves;
-    if (set.pushDepth > 0 && ctx.parameters.getBool("extension-push-every-end-final"))
+    if (set.pushDepth > 0 && everyEnd)
         for (int sweep = 0; sweep < ctx.parameters.getInt("extension-max-sweeps"); ++sweep)
             if (pushCuspEnds(ctx, m, ext, nullptr, true) == 0)
                 break;
@@ -785,29 +786,6 @@ void addRadialExtensionPhase(Method& m) {
          5,
          0,
          10,
-         {}});
-    m.parameters.push_back(
-        {"extension-cusp-push-final",
-         "Extension: cusp push after the normal wiggle",
-         "Not in the paper: the cusps' radial ends are pushed again "
-         "(extension-cusp-push-depth) after the normal wiggle (§6.4), on the faces still "
-         "inconsistent then.",
-         ParameterType::Bool,
-         true,
-         0,
-         0,
-         {}});
-    m.parameters.push_back(
-        {"extension-push-every-end-final",
-         "Extension: push every radial end at the end",
-         "Not in the paper: after the cusps' final push, the far ends of all radial "
-         "edges at inconsistent faces are pushed the same way, each push kept only when "
-         "fewer faces are inconsistent. Needs extension-cusp-push-depth > 0 and "
-         "extension-cusp-push-final.",
-         ParameterType::Bool,
-         true,
-         0,
-         0,
          {}});
     m.addPhase(
         {"radial-extension",
