@@ -36,7 +36,7 @@ void Snapshot::setCounter(const std::string& name, double value) {
             c.value = value;
             return;
         }
-    counters.push_back({name, value});
+    counters.push_back({name, value, {}});
 }
 
 double Snapshot::counter(const CounterName& name, double fallback) const {

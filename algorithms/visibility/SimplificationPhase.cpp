@@ -26,7 +26,7 @@ void runSimplification(const PhaseContext& ctx, Snapshot& s) {
     if (!ctx.parameters.getBool(kSimplify)) {
         s.notes.push_back("simplification is off (--simplify to turn it on): the view graph "
                           "is passed through unchanged");
-        s.setCounter("chains hidden by simplification", 0.0);
+        s.setCounter(counters::kChainsHiddenBySimplification, 0.0);
         return;
     }
     const double threshold = ctx.parameters.getDouble(kThreshold);
@@ -34,10 +34,10 @@ void runSimplification(const PhaseContext& ctx, Snapshot& s) {
     const double before = graph->visibleLengthPixels();
     const SimplificationResult result = simplifyViewGraph(*graph, threshold);
     const double after = graph->visibleLengthPixels();
-    s.setCounter("chains hidden by simplification", result.chainsHidden);
-    s.setCounter("simplification iterations", result.iterations);
-    s.setCounter("visible length before simplification (px)", before);
-    s.setCounter("visible length after simplification (px)", after);
+    s.setCounter(counters::kChainsHiddenBySimplification, result.chainsHidden);
+    s.setCounter(counters::kSimplificationIterations, result.iterations);
+    s.setCounter(counters::kVisibleLengthBeforeSimplificationPx, before);
+    s.setCounter(counters::kVisibleLengthAfterSimplificationPx, after);
     std::ostringstream note;
     note << "simplification (Bénard 2014 §9, threshold " << threshold << " px) hid "
          << result.chainsHidden << " chains (" << before - after << " px of " << before

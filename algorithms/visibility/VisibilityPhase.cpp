@@ -122,7 +122,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
             const std::shared_ptr<const SurfaceIntersectionCurves> found =
                 cachedSurfaceIntersections(s.mesh, &cached);
             intersectionSeconds = secondsSince(t0);
-            s.setCounter("surface intersections cached", cached ? 1.0 : 0.0);
+            s.setCounter(counters::kSurfaceIntersectionsCached, cached ? 1.0 : 0.0);
             intersectionCurves = static_cast<long long>(found->curves.size());
             for (size_t i = 0; i < found->curves.size(); ++i) {
                 curves.push_back(found->curves[i]);
@@ -242,63 +242,73 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         ++perType[n.type];
         unreliable += n.unreliable;
     }
-    s.setCounter("chains", static_cast<double>(graph->chains.size()));
-    s.setCounter("visible chains", static_cast<double>(visible));
-    s.setCounter("concave contour chains", static_cast<double>(concave));
-    s.setCounter("nodes", static_cast<double>(graph->nodes.size()));
-    for (ViewNodeType t : {ViewNodeType::CurtainFold, ViewNodeType::BoundaryCurtainFold,
-                           ViewNodeType::ImageIntersection, ViewNodeType::ContourBoundaryJunction,
-                           ViewNodeType::Bifurcation, ViewNodeType::SurfaceIntersectionEnd,
-                           ViewNodeType::CurveEnd, ViewNodeType::HiddenFoldCrossing})
-        s.setCounter(std::string("nodes: ") + toString(t), static_cast<double>(perType[t]));
-    s.setCounter("T-junctions", static_cast<double>(perType[ViewNodeType::ImageIntersection]));
-    s.setCounter("curtain folds", static_cast<double>(perType[ViewNodeType::CurtainFold]));
-    s.setCounter("surface-intersection curves", static_cast<double>(intersectionCurves));
-    s.setCounter("connected components", static_cast<double>(propagated.components));
-    s.setCounter("ray tests", static_cast<double>(graph->rayTests));
-    s.setCounter("conflicts", static_cast<double>(graph->conflicts.size()));
-    s.setCounter("ray-check conflicts", static_cast<double>(propagated.rayConflicts));
-    s.setCounter("check rays recounted exactly", static_cast<double>(propagated.exactRecounts));
-    s.setCounter("check rays corrected by the exact recount",
+    s.setCounter(counters::kChains, static_cast<double>(graph->chains.size()));
+    s.setCounter(counters::kVisibleChains, static_cast<double>(visible));
+    s.setCounter(counters::kConcaveContourChains, static_cast<double>(concave));
+    s.setCounter(counters::kNodes, static_cast<double>(graph->nodes.size()));
+    // "nodes: " + toString(type), in this order.
+    for (const auto& [t, name] :
+         {std::pair{ViewNodeType::CurtainFold, counters::kNodesCurtainFold},
+          std::pair{ViewNodeType::BoundaryCurtainFold, counters::kNodesBoundaryCurtainFold},
+          std::pair{ViewNodeType::ImageIntersection, counters::kNodesImageIntersection},
+          std::pair{ViewNodeType::ContourBoundaryJunction, counters::kNodesContourBoundaryJunction},
+          std::pair{ViewNodeType::Bifurcation, counters::kNodesBifurcation},
+          std::pair{ViewNodeType::SurfaceIntersectionEnd, counters::kNodesSurfaceIntersectionEnd},
+          std::pair{ViewNodeType::CurveEnd, counters::kNodesCurveEnd},
+          std::pair{ViewNodeType::HiddenFoldCrossing, counters::kNodesHiddenFoldCrossing}})
+        s.setCounter(name, static_cast<double>(perType[t]));
+    s.setCounter(counters::kTJunctions,
+                 static_cast<double>(perType[ViewNodeType::ImageIntersection]));
+    s.setCounter(counters::kCurtainFolds, static_cast<double>(perType[ViewNodeType::CurtainFold]));
+    s.setCounter(counters::kSurfaceIntersectionCurves, static_cast<double>(intersectionCurves));
+    s.setCounter(counters::kConnectedComponents, static_cast<double>(propagated.components));
+    s.setCounter(counters::kRayTests, static_cast<double>(graph->rayTests));
+    s.setCounter(counters::kConflicts, static_cast<double>(graph->conflicts.size()));
+    s.setCounter(counters::kRayCheckConflicts, static_cast<double>(propagated.rayConflicts));
+    s.setCounter(counters::kCheckRaysRecountedExactly,
+                 static_cast<double>(propagated.exactRecounts));
+    s.setCounter(counters::kCheckRaysCorrectedByTheExactRecount,
                  static_cast<double>(propagated.correctedRays));
-    s.setCounter("propagation cycle disagreements",
+    s.setCounter(counters::kPropagationCycleDisagreements,
                  static_cast<double>(propagated.cycleDisagreements));
-    s.setCounter("chains propagated below their bound",
+    s.setCounter(counters::kChainsPropagatedBelowTheirBound,
                  static_cast<double>(propagated.belowLowerBound));
-    s.setCounter("visible length px", graph->visibleLengthPixels());
-    s.setCounter("hidden length px", graph->hiddenLengthPixels());
-    s.setCounter("image segments", static_cast<double>(built.segments));
-    s.setCounter("image segments swept", static_cast<double>(built.sweptSegments));
-    s.setCounter("image crossings", static_cast<double>(built.imageCrossings));
-    s.setCounter("logical crossings ignored", static_cast<double>(built.logicalCrossings));
-    s.setCounter("endpoint touches ignored", static_cast<double>(built.endpointTouches));
-    s.setCounter("overlapping segment pairs", static_cast<double>(built.overlaps));
-    s.setCounter("crossings behind non-fold edges", static_cast<double>(built.nonFoldNear));
-    s.setCounter("fold edges off the curves", static_cast<double>(built.foldOccluderEdges));
-    s.setCounter("curtain folds by the one-ring test alone",
+    s.setCounter(counters::kVisibleLengthPx, graph->visibleLengthPixels());
+    s.setCounter(counters::kHiddenLengthPx, graph->hiddenLengthPixels());
+    s.setCounter(counters::kImageSegments, static_cast<double>(built.segments));
+    s.setCounter(counters::kImageSegmentsSwept, static_cast<double>(built.sweptSegments));
+    s.setCounter(counters::kImageCrossings, static_cast<double>(built.imageCrossings));
+    s.setCounter(counters::kLogicalCrossingsIgnored, static_cast<double>(built.logicalCrossings));
+    s.setCounter(counters::kEndpointTouchesIgnored, static_cast<double>(built.endpointTouches));
+    s.setCounter(counters::kOverlappingSegmentPairs, static_cast<double>(built.overlaps));
+    s.setCounter(counters::kCrossingsBehindNonFoldEdges, static_cast<double>(built.nonFoldNear));
+    s.setCounter(counters::kFoldEdgesOffTheCurves, static_cast<double>(built.foldOccluderEdges));
+    s.setCounter(counters::kCurtainFoldsByTheOneRingTestAlone,
                  static_cast<double>(built.localOnlyFolds));
-    s.setCounter("curtain folds without a local step", static_cast<double>(built.foldsWithoutStep));
-    s.setCounter("curtain folds occluding the convex side",
+    s.setCounter(counters::kCurtainFoldsWithoutALocalStep,
+                 static_cast<double>(built.foldsWithoutStep));
+    s.setCounter(counters::kCurtainFoldsOccludingTheConvexSide,
                  static_cast<double>(built.convexFarFolds));
-    s.setCounter("mixed-convexity chains", static_cast<double>(built.mixedConvexityChains));
+    s.setCounter(counters::kMixedConvexityChains, static_cast<double>(built.mixedConvexityChains));
     if (flavor == VisibilityFlavor::Consistent)
-        s.setCounter("unreliable near-face nodes", static_cast<double>(unreliable));
-    s.setCounter("surface intersections seconds", intersectionSeconds);
-    s.setCounter("view graph seconds", buildSeconds);
-    s.setCounter("sweep seconds", built.sweepSeconds);
+        s.setCounter(counters::kUnreliableNearFaceNodes, static_cast<double>(unreliable));
+    s.setCounter(counters::kSurfaceIntersectionsSeconds, intersectionSeconds);
+    s.setCounter(counters::kViewGraphSeconds, buildSeconds);
+    s.setCounter(counters::kSweepSeconds, built.sweepSeconds);
     // Built while the surface intersections and the graph are computed (on
     // the other core when there is one): this time overlaps "surface
     // intersections seconds" and "view graph seconds".
-    s.setCounter("ray scene seconds", sceneSeconds);
-    s.setCounter("ray and QI seconds", raySeconds);
+    s.setCounter(counters::kRaySceneSeconds, sceneSeconds);
+    s.setCounter(counters::kRayAndQISeconds, raySeconds);
     // Its parts: propagation with one ray per component (or the heuristic
     // votes), the optional check rays, Bénard 2014 §8.4.
-    s.setCounter(flavor == VisibilityFlavor::Interpolated ? "vote seconds" : "propagation seconds",
+    s.setCounter(flavor == VisibilityFlavor::Interpolated ? counters::kVoteSeconds
+                                                          : counters::kPropagationSeconds,
                  qiSeconds);
-    s.setCounter("check rays seconds", checkSeconds);
+    s.setCounter(counters::kCheckRaysSeconds, checkSeconds);
     if (flavor == VisibilityFlavor::Consistent)
-        s.setCounter("consistent visibility seconds", consistentSeconds);
-    s.setCounter("visibility seconds", secondsSince(start));
+        s.setCounter(counters::kConsistentVisibilitySeconds, consistentSeconds);
+    s.setCounter(counters::kVisibilitySeconds, secondsSince(start));
 
     // Notes: what a user should know about this result.
     std::ostringstream note;
@@ -355,7 +365,7 @@ std::vector<InvariantCheck> checkVisibility(VisibilityFlavor flavor, const Phase
     }
     const ViewGraph& g = *s.viewGraph;
     // Theorem B.0.1 needs a mesh without self-intersections.
-    const bool selfIntersecting = s.counter("surface-intersection curves", 0.0) > 0.0;
+    const bool selfIntersecting = s.counter(counters::kSurfaceIntersectionCurves, 0.0) > 0.0;
     auto violate = [](InvariantCheck& c, const std::string& example) {
         if (c.violations++ == 0)
             c.firstExample = example;

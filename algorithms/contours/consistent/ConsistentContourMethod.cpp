@@ -4,8 +4,8 @@
 // phases come from the sub-phase files, in the paper's order (§6).
 #include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
 #include "visibility/SimplificationPhase.h"
 #include "visibility/VisibilityPhase.h"
 

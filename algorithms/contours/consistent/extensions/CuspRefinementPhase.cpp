@@ -1,8 +1,9 @@
 // Cusp refinement around every cusp (not in the paper; CuspRefinement.h),
 // between cusp detection (§6.2 d) and contour insertion (§6.2 e).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/CuspRefinement.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
 
 namespace contour::consistent {
 

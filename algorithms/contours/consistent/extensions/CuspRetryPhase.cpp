@@ -5,11 +5,12 @@
 // cusp detection and contour insertion) and keeps the new mesh only when it
 // has strictly fewer inconsistent faces (ties keep the first run), so no view
 // ends worse and the views without such faces are untouched.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/CuspRefinement.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
 
 #include <algorithm>
 #include <set>

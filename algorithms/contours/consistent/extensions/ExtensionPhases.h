@@ -1,0 +1,16 @@
+#pragma once
+// The phases of the consistent method that are not in Bénard, Hertzmann &
+// Kass 2014 (the paper's own: phases/ConsistentPhases.h). Each file adds its
+// parameters and its phase to the method; ConsistentContourMethod.cpp
+// places them among the paper's phases.
+#include "pipeline/Method.h"
+
+namespace contour::consistent {
+
+void addCuspRefinementPhase(Method& m);    // not in the paper: edges near cusps halved
+void addVertexRemovalPhase(Method& m);     // extension of §6.4 (§6.3 h vertex deletion)
+void addPatchSearchPhase(Method& m);       // extension of §6.4: compound moves
+void addContourRefinementPhase(Method& m); // not in the paper: contour edges split near the curve
+void addCuspRetryPhase(Method& m);         // not in the paper: rerun refined around cusps
+
+} // namespace contour::consistent
