@@ -79,8 +79,35 @@ std::vector<std::uint8_t> byteField(const Snapshot& s, const char* name, bool in
     return out;
 }
 
+// The phase's parameters, read once per run (each flavour declares its own).
+struct VisibilityOptions {
+    bool enabled = false;              // visibility
+    bool surfaceIntersections = false; // surface-intersections
+    bool checkRays = false;            // visibility-check-rays
+    double nearFaceEpsilon = 0.0;      // consistent: near-face-epsilon
+    double shortChainPixels = 0.0;     // consistent: ambiguity-short-chain
+    int votes = 0;                     // interpolated: visibility-votes
+    std::string ignoredFaces;          // interpolated: visibility-ignored-faces
+    static VisibilityOptions read(VisibilityFlavor flavor, const ParameterSet& p) {
+        VisibilityOptions o;
+        o.enabled = p.getBool(kVisibility);
+        o.surfaceIntersections = p.getBool(kSurfaceIntersections);
+        o.checkRays = p.getBool(kCheckRays);
+        if (flavor == VisibilityFlavor::Consistent) {
+            o.nearFaceEpsilon = p.getDouble(kNearFaceEpsilon);
+            o.shortChainPixels = p.getDouble(kShortChain);
+        }
+        if (flavor == VisibilityFlavor::Interpolated) {
+            o.votes = p.getInt(kVotes);
+            o.ignoredFaces = p.getChoice(kIgnoredFaces);
+        }
+        return o;
+    }
+};
+
 void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s) {
-    if (!ctx.parameters.getBool(kVisibility)) {
+    const VisibilityOptions parameters = VisibilityOptions::read(flavor, ctx.parameters);
+    if (!parameters.enabled) {
         s.viewGraph.reset();
         s.notes.push_back("visibility is off (--visibility true to turn it on): no view graph, "
                           "the curves are passed through unchanged");
@@ -116,7 +143,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     std::shared_ptr<ViewGraph> graph;
     double buildSeconds = 0.0;
     auto intersections = [&] {
-        if (ctx.parameters.getBool(kSurfaceIntersections)) {
+        if (parameters.surfaceIntersections) {
             bool cached = false;
             const auto t0 = std::chrono::steady_clock::now();
             const std::shared_ptr<const SurfaceIntersectionCurves> found =
@@ -149,7 +176,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                            : flavor == VisibilityFlavor::Consistent ? CurtainFoldTest::NearFace
                                                                     : CurtainFoldTest::None;
         if (flavor == VisibilityFlavor::Consistent)
-            options.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
+            options.nearFaceEpsilon = parameters.nearFaceEpsilon;
         // Exact mesh visibility needs every fold of the mesh as an occluder
         // (see ViewGraphOptions); interpolated contours keep the tutorial's
         // simpler model where the curves themselves occlude.
@@ -176,7 +203,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     ctx.checkCancelled();
 
     const RayCaster& rays = *rayCaster;
-    const bool checkRays = ctx.parameters.getBool(kCheckRays);
+    const bool checkRays = parameters.checkRays;
     QiPropagationStats propagated;
     // Consistent contours: the rays of propagation and of the check from
     // each chain's middle segment are the ones §8.4 votes with there; they
@@ -191,13 +218,11 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         // mesh's folds, so the +2/+1 propagation rules do not hold for them;
         // the heuristic vote decides, and the check rays say where it
         // disagrees with a single ray.
-        const std::optional<IgnoredFaces> ignored =
-            ignoredFacesFromString(ctx.parameters.getChoice(kIgnoredFaces));
+        const std::optional<IgnoredFaces> ignored = ignoredFacesFromString(parameters.ignoredFaces);
         if (!ignored)
             throw std::invalid_argument("unknown " + std::string(kIgnoredFaces) + " '" +
-                                        ctx.parameters.getChoice(kIgnoredFaces) + "'");
-        voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, ctx.parameters.getInt(kVotes),
-                                   *ignored);
+                                        parameters.ignoredFaces + "'");
+        voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, parameters.votes, *ignored);
         qiSeconds = secondsSince(tQi);
         if (checkRays) {
             const auto tCheck = std::chrono::steady_clock::now();
@@ -218,8 +243,8 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
 
     if (flavor == VisibilityFlavor::Consistent) {
         ConsistentVisibilityOptions consistent;
-        consistent.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
-        consistent.shortChainPixels = ctx.parameters.getDouble(kShortChain);
+        consistent.nearFaceEpsilon = parameters.nearFaceEpsilon;
+        consistent.shortChainPixels = parameters.shortChainPixels;
         const auto tConsistent = std::chrono::steady_clock::now();
         resolveConsistentVisibility(
             *graph, mesh, ctx.camera, rays,
@@ -343,7 +368,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     if (flavor == VisibilityFlavor::Interpolated)
         s.notes.push_back("interpolated contours: visibility is a vote of ray tests per chain "
                           "ignoring the contour's " +
-                          ctx.parameters.getChoice(kIgnoredFaces) +
+                          parameters.ignoredFaces +
                           " (tutorial §6.2.4), approximate by design: expect gaps and halos");
     s.viewGraph = std::move(graph);
     s.curves = std::make_shared<const std::vector<Polyline>>(std::move(curves));

@@ -144,16 +144,30 @@ std::optional<SurfaceKind> kindOrThrow(const ParameterSet& parameters, const Sna
     return selectedSurfaceKind(parameters, *s.cage);
 }
 
-void runSurfacePhase(const PhaseContext& ctx, Snapshot& s, NoneSurfaceNormals noneNormals) {
+// The phase's parameters, read once per run.
+struct SurfacePhaseOptions {
+    int tessellationLevel = 0; // tessellation-level
+    // The weighting of the vertex normals published with surface = none.
+    std::optional<NormalWeighting> noneWeighting;
+    static SurfacePhaseOptions read(const ParameterSet& p, const NoneSurfaceNormals& noneNormals) {
+        SurfacePhaseOptions o;
+        o.tessellationLevel = p.getInt("tessellation-level");
+        if (noneNormals.weighting)
+            o.noneWeighting = noneNormals.weighting(p);
+        return o;
+    }
+};
+
+void runSurfacePhase(const PhaseContext& ctx, Snapshot& s, const NoneSurfaceNormals& noneNormals) {
+    const SurfacePhaseOptions options = SurfacePhaseOptions::read(ctx.parameters, noneNormals);
     const std::optional<SurfaceKind> kind = kindOrThrow(ctx.parameters, s);
     if (!kind) {
         // The triangulated cage stays the working mesh.
         s.setCounter(counters::kDomainFaces, s.cage ? s.cage->faceCount() : s.mesh->faceCount());
         s.setCounter(counters::kTessellationFaces, s.mesh->faceCount());
         s.setCounter(counters::kSurfaceSetupSeconds, 0.0);
-        if (noneNormals == NoneSurfaceNormals::WeightedAverage)
-            s.fields[fields::kVertexNormal] = cachedVertexNormals(
-                s.mesh, normalWeightingFromName(ctx.parameters.getChoice("normal-weighting")));
+        if (options.noneWeighting)
+            s.fields[fields::kVertexNormal] = cachedVertexNormals(s.mesh, *options.noneWeighting);
         return;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -164,8 +178,8 @@ void runSurfacePhase(const PhaseContext& ctx, Snapshot& s, NoneSurfaceNormals no
     s.setCounter(counters::kSurfaceCached, surface.fromCache ? 1.0 : 0.0);
     ctx.checkCancelled();
     ctx.reportProgress(0.5);
-    applySmoothSurface(s, surface.surface, ctx.parameters.getInt("tessellation-level"), ctx.camera);
-    if (noneNormals == NoneSurfaceNormals::WeightedAverage)
+    applySmoothSurface(s, surface.surface, options.tessellationLevel, ctx.camera);
+    if (options.noneWeighting)
         s.notes.push_back("vertex normals are the smooth surface's exact normals; the "
                           "normal-weighting parameter applies only with surface = none");
 }

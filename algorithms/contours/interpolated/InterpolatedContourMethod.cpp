@@ -226,7 +226,9 @@ Method makeInterpolatedContourMethod() {
     const std::vector<ParameterSpec> surface = surfaceParameters();
     m.parameters.insert(m.parameters.begin(), surface.begin(), surface.end());
     m.phases = {
-        makeSurfacePhase(NoneSurfaceNormals::WeightedAverage),
+        makeSurfacePhase({[](const ParameterSet& p) {
+            return normalWeightingFromName(p.getChoice("normal-weighting"));
+        }}),
         {"facing", "Vertex normals, g = (c - p) · n at every vertex, and each face's facing.",
          computeVertexFacing, checkVertexFacing},
         {"extraction",

@@ -92,10 +92,22 @@ std::vector<InvariantCheck> checkContourEdges(const PhaseContext&, const Snapsho
 
 // Chains contour edges through vertices where exactly two meet; a chain
 // stops at bifurcations (more than two contour edges at a vertex, §4.3).
+struct ChainOptions {
+    bool dropConcave = false;       // drop-concave
+    bool includeBoundaries = false; // include-boundaries
+    static ChainOptions read(const ParameterSet& p) {
+        ChainOptions o;
+        o.dropConcave = p.getBool("drop-concave");
+        o.includeBoundaries = p.getBool("include-boundaries");
+        return o;
+    }
+};
+
 void chainContourEdges(const PhaseContext& ctx, Snapshot& s) {
+    const ChainOptions options = ChainOptions::read(ctx.parameters);
     const TriangleMesh& mesh = *s.mesh;
     const std::vector<int>& label = *s.field(fields::kContourEdge)->labels();
-    const bool dropConcave = ctx.parameters.getBool("drop-concave");
+    const bool dropConcave = options.dropConcave;
     std::vector<Index> edges;
     std::vector<int> degree(mesh.vertexCount(), 0);
     for (Index e = 0; e < mesh.edgeCount(); ++e) {
@@ -114,13 +126,12 @@ void chainContourEdges(const PhaseContext& ctx, Snapshot& s) {
         s.notes.push_back(std::to_string(bifurcations) +
                           " vertices join more than two contour edges (bifurcations, tutorial "
                           "§4.3): chains stop there");
-    publishCurves(s, edgePolylines(mesh, edges, CurveType::Contour),
-                  ctx.parameters.getBool("include-boundaries"));
+    publishCurves(s, edgePolylines(mesh, edges, CurveType::Contour), options.includeBoundaries);
 }
 
 std::vector<InvariantCheck> checkChains(const PhaseContext& ctx, const Snapshot& s) {
     const std::vector<int>& label = *s.field(fields::kContourEdge)->labels();
-    const bool dropConcave = ctx.parameters.getBool("drop-concave");
+    const bool dropConcave = ChainOptions::read(ctx.parameters).dropConcave;
     std::vector<int> uses(label.size(), 0);
     for (const Polyline& line : *s.curves)
         if (line.type == CurveType::Contour)
@@ -190,7 +201,7 @@ Method makeMeshContourMethod() {
     const std::vector<ParameterSpec> surface = surfaceParameters();
     m.parameters.insert(m.parameters.begin(), surface.begin(), surface.end());
     m.phases = {
-        makeSurfacePhase(NoneSurfaceNormals::Omit),
+        makeSurfacePhase({}),
         makeMeshFacingPhase(),
         {"extraction",
          "Contour edges (front face next to back face) and boundary edges; "

@@ -406,19 +406,38 @@ long long separateCuspEdges(ConsistentMesh& m, int phase) {
     return splits;
 }
 
+// The phase's parameters, read once per run.
+struct CuspDetectionOptions {
+    double areaThreshold = 0.0; // cusp-area-threshold
+    double shiftFraction = 0.0; // cusp-shift-fraction
+    int subdivision = 0;        // cusp-search-subdivision
+    int contourSamples = 0;     // cusp-contour-samples
+    // Contour insertion's root search, which the cusp's edge must pass.
+    ContourRootOptions roots;
+    static CuspDetectionOptions read(const ParameterSet& p) {
+        CuspDetectionOptions o;
+        o.areaThreshold = p.getDouble("cusp-area-threshold");
+        o.shiftFraction = p.getDouble("cusp-shift-fraction");
+        o.subdivision = p.getInt("cusp-search-subdivision");
+        o.contourSamples = p.getInt("cusp-contour-samples");
+        o.roots = ContourRootOptions::read(p);
+        return o;
+    }
+};
+
 void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
+    const CuspDetectionOptions parameters = CuspDetectionOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     JointRootOptions options;
-    options.minArea = static_cast<long double>(ctx.parameters.getDouble("cusp-area-threshold"));
+    options.minArea = static_cast<long double>(parameters.areaThreshold);
     options.minEdge = kMinEdge;
     options.maxEvaluations = kMaxEvaluationsPerFace;
-    const double shiftFraction = ctx.parameters.getDouble("cusp-shift-fraction");
-    const int subdivision = ctx.parameters.getInt("cusp-search-subdivision");
+    const double shiftFraction = parameters.shiftFraction;
+    const int subdivision = parameters.subdivision;
     ContourCuspOptions contour;
-    contour.samples = ctx.parameters.getInt("cusp-contour-samples");
-    // Contour insertion's root search, which the cusp's edge must pass.
-    const ContourRootOptions roots = ContourRootOptions::read(ctx.parameters);
+    contour.samples = parameters.contourSamples;
+    const ContourRootOptions& roots = parameters.roots;
     contour.gTolerance = 0.5 * roots.tolerance * sceneScale(m);
     contour.maxRootIterations = roots.maxIterations;
     const double same = kSameCusp * sceneScale(m);

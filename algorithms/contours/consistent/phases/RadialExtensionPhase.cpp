@@ -27,6 +27,7 @@ struct ExtensionSettings {
     double tolerance = 0.0; // on radialPlaneDistance, absolute
     int maxIterations = 100;
     int pushDepth = 0; // extension-cusp-push-depth
+    int maxSweeps = 0; // extension-max-sweeps
 };
 
 struct ExtensionStats {
@@ -613,6 +614,7 @@ ExtensionSettings extensionSettings(const PhaseContext& ctx, const ConsistentMes
     set.tolerance = radial.rootTolerance * scale;
     set.maxIterations = radial.rootMaxIterations;
     set.pushDepth = ctx.parameters.getInt("extension-cusp-push-depth");
+    set.maxSweeps = ctx.parameters.getInt("extension-max-sweeps");
     return set;
 }
 
@@ -639,7 +641,7 @@ long long pushCuspEnds(const PhaseContext& ctx, ConsistentMesh& m, Extender& ext
 void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
     ConsistentMesh m = reload(ctx, s);
     const ExtensionSettings set = extensionSettings(ctx, m);
-    const int maxSweeps = ctx.parameters.getInt("extension-max-sweeps");
+    const int maxSweeps = set.maxSweeps;
     Extender ext(m, set, s.phaseIndex);
     OptimizationTally tally;
     tally.before = static_cast<long long>(inconsistentFaces(m).size());
