@@ -1,8 +1,8 @@
 #pragma once
 // Shared set-up for the contour suites: run a method to the end on a shape.
 #include "contours/Methods.h"
-#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/Runner.h"
 
 #include <filesystem>
@@ -45,8 +45,8 @@ struct OnOffCounts {
     double without = 0.0, with = 0.0;
     int better = 0;
     std::string add(const Snapshot& offLast, const Snapshot& onLast, size_t view) {
-        const double a = offLast.counter("inconsistent faces", -1.0);
-        const double b = onLast.counter("inconsistent faces", -1.0);
+        const double a = offLast.counter(counters::kInconsistentFaces, -1.0);
+        const double b = onLast.counter(counters::kInconsistentFaces, -1.0);
         if (a < 0.0 || b < 0.0)
             return "view " + std::to_string(view) + ": no inconsistent faces counter";
         if (b > a)

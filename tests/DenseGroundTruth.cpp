@@ -604,7 +604,7 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
     for (const MethodLoop& m : method)
         r.methodOpenLoops += !m.closed;
     r.truthCusps = static_cast<int>(truth.cusps.size());
-    r.methodCusps = static_cast<int>(snapshot.counter("cusps", -1.0));
+    r.methodCusps = static_cast<int>(snapshot.counter(counters::kCusps, -1.0));
 
     struct Pair {
         double jaccard;

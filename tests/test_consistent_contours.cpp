@@ -68,10 +68,10 @@ void report(const char* name, const Tally& t, int views) {
 void tally(Tally& t, const ViewRun& r) {
     for (int k = 0; k < 2; ++k) {
         const Snapshot& s = r.after(k == 0 ? "initialization" : "contour-insertion");
-        const double n = s.counter("inconsistent faces");
+        const double n = s.counter(counters::kInconsistentFaces);
         t.inconsistent[k] += n;
         t.worst[k] = std::max(t.worst[k], n);
-        t.faces[k] += s.counter("faces");
+        t.faces[k] += s.counter(counters::kFaces);
     }
 }
 
@@ -172,10 +172,10 @@ private slots:
             for (const Snapshot& s : r.snapshots)
                 verifyNoViolations(s);
             const Snapshot& ins = r.after("contour-insertion");
-            QCOMPARE(ins.counter("FB edges left"), 0.0);
-            QCOMPARE(ins.counter("undefined VBOs"), 0.0);
-            QCOMPARE(ins.counter("degenerate CC edges"), 0.0);
-            QVERIFY(ins.counter("contour vertices") > 0);
+            QCOMPARE(ins.counter(counters::kFBEdgesLeft), 0.0);
+            QCOMPARE(ins.counter(counters::kUndefinedVBOs), 0.0);
+            QCOMPARE(ins.counter(counters::kDegenerateCCEdges), 0.0);
+            QVERIFY(ins.counter(counters::kContourVertices) > 0);
             // |g| at C vertices, recomputed here from the published fields.
             const auto& label = *ins.field(fields::kLabel)->labels();
             const auto& g = *ins.field(fields::kG)->scalars();
@@ -238,16 +238,17 @@ private slots:
                     verifyNoViolations(runs[k]);
                 }
                 const std::string where = std::string(name) + " view " + std::to_string(v);
-                QVERIFY2(runs[1].counter("snapped vertices") == runs[0].counter("snapped vertices"),
+                QVERIFY2(runs[1].counter(counters::kSnappedVertices) ==
+                             runs[0].counter(counters::kSnappedVertices),
                          qPrintable(QString::fromStdString(where) +
                                     QString(": %1 snaps with corner charts, %2 without")
-                                        .arg(runs[1].counter("snapped vertices"))
-                                        .arg(runs[0].counter("snapped vertices"))));
-                QCOMPARE(runs[1].counter("inserted contour vertices"),
-                         runs[0].counter("inserted contour vertices"));
+                                        .arg(runs[1].counter(counters::kSnappedVertices))
+                                        .arg(runs[0].counter(counters::kSnappedVertices))));
+                QCOMPARE(runs[1].counter(counters::kInsertedContourVertices),
+                         runs[0].counter(counters::kInsertedContourVertices));
                 QCOMPARE(runs[1].mesh->faceCount(), runs[0].mesh->faceCount());
-                snaps += static_cast<long long>(runs[1].counter("snapped vertices"));
-                snapsAcross += static_cast<long long>(runs[2].counter("snapped vertices"));
+                snaps += static_cast<long long>(runs[1].counter(counters::kSnappedVertices));
+                snapsAcross += static_cast<long long>(runs[2].counter(counters::kSnappedVertices));
                 // The same mesh: every vertex's preimage and every face.
                 QCOMPARE(runs[1].mesh->vertexCount(), runs[0].mesh->vertexCount());
                 const auto& uv0 = *runs[0].field(fields::kPreimageUv)->vectors();
@@ -279,8 +280,8 @@ private slots:
             const ViewRun r = runViews(cage, camera);
             for (const Snapshot& s : r.snapshots)
                 verifyNoViolations(s);
-            QCOMPARE(r.after("contour-insertion").counter("FB edges left"), 0.0);
-            QCOMPARE(r.after("contour-insertion").counter("undefined VBOs"), 0.0);
+            QCOMPARE(r.after("contour-insertion").counter(counters::kFBEdgesLeft), 0.0);
+            QCOMPARE(r.after("contour-insertion").counter(counters::kUndefinedVBOs), 0.0);
             tally(t, r);
         }
         report("spot_control_mesh", t,

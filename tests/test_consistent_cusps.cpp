@@ -9,9 +9,10 @@
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
 #include "contours/consistent/mesh/ConsistentMesh.h"
+#include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
 #include "contours/consistent/numerics/JointRootSearch.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
@@ -334,8 +335,8 @@ private slots:
             const ViewRun r = run(cage, camera);
             for (const Snapshot& s : r.snapshots)
                 QVERIFY2(violations(s).empty(), violations(s).c_str());
-            QCOMPARE(r.after("cusp-detection").counter("cusps found"), 0.0);
-            QCOMPARE(r.after("contour-insertion").counter("cusps"), 0.0);
+            QCOMPARE(r.after("cusp-detection").counter(counters::kCuspsFound), 0.0);
+            QCOMPARE(r.after("contour-insertion").counter(counters::kCusps), 0.0);
         }
     }
 
@@ -355,7 +356,7 @@ private slots:
         // The case still happens: snapping shrinks the bounding box.
         QVERIFY(insertion.mesh->boundingBox().diagonal() <
                 detection.mesh->boundingBox().diagonal());
-        QVERIFY(insertion.counter("snapped vertices") > 0.0);
+        QVERIFY(insertion.counter(counters::kSnappedVertices) > 0.0);
         for (const Snapshot& s : r.snapshots)
             QVERIFY2(violations(s).empty(), violations(s).c_str());
     }
@@ -552,22 +553,22 @@ private slots:
                 const Snapshot& insertion = r.after("contour-insertion");
                 const std::string failure = checkCuspVertices(insertion);
                 QVERIFY2(failure.empty(), ("view " + std::to_string(v) + ": " + failure).c_str());
-                const int cusps = int(insertion.counter("cusps"));
+                const int cusps = int(insertion.counter(counters::kCusps));
                 // Every cusp edge became one cusp vertex.
-                QCOMPARE(double(cusps), detection.counter("cusp splits") +
-                                            detection.counter("cusp shifts") +
-                                            detection.counter("cusps on an edge"));
-                QCOMPARE(insertion.counter("inserted cusp vertices"), double(cusps));
+                QCOMPARE(double(cusps), detection.counter(counters::kCuspSplits) +
+                                            detection.counter(counters::kCuspShifts) +
+                                            detection.counter(counters::kCuspsOnAnEdge));
+                QCOMPARE(insertion.counter(counters::kInsertedCuspVertices), double(cusps));
                 Tally& t = tally[k];
                 t.matches += cusps == truth;
                 t.over += cusps > truth;
                 t.under += cusps < truth;
                 t.total += cusps;
-                t.found += int(detection.counter("cusps found"));
-                t.splits += int(detection.counter("cusp splits"));
-                t.shifts += int(detection.counter("cusp shifts"));
-                t.onEdge += int(detection.counter("cusps on an edge"));
-                t.skipped += int(detection.counter("cusps skipped"));
+                t.found += int(detection.counter(counters::kCuspsFound));
+                t.splits += int(detection.counter(counters::kCuspSplits));
+                t.shifts += int(detection.counter(counters::kCuspShifts));
+                t.onEdge += int(detection.counter(counters::kCuspsOnAnEdge));
+                t.skipped += int(detection.counter(counters::kCuspsSkipped));
                 t.perView += QString(" %1:%2/%3").arg(v).arg(cusps).arg(truth);
                 for (const std::string& note : detection.notes)
                     if (note.find("skipped") != std::string::npos)
@@ -700,7 +701,7 @@ private slots:
             for (const Snapshot& s : r.snapshots)
                 QVERIFY2(violations(s).empty(),
                          ("view " + std::to_string(v) + ": " + violations(s)).c_str());
-            moved += int(r.after("cusp-detection").counter("cusps moved off a jump of g"));
+            moved += int(r.after("cusp-detection").counter(counters::kCuspsMovedOffAJumpOfG));
             const std::string failure = checkCuspVertices(r.after("contour-insertion"));
             QVERIFY2(failure.empty(), ("view " + std::to_string(v) + ": " + failure).c_str());
         }

@@ -833,7 +833,7 @@ private slots:
                 if (!find(snapshots, kPhases[k]))
                     continue;
                 const Snapshot& s = after(snapshots, kPhases[k]);
-                const double n = s.counter("inconsistent faces");
+                const double n = s.counter(counters::kInconsistentFaces);
                 QVERIFY(n >= 0.0);
                 if (previous >= 0.0)
                     QVERIFY2(n <= previous,
@@ -842,10 +842,10 @@ private slots:
                                  " raised the inconsistent faces from " + std::to_string(previous) +
                                  " to " + std::to_string(n))));
                 if (k > 0)
-                    QCOMPARE(s.counter("inconsistent faces before"), previous);
+                    QCOMPARE(s.counter(counters::kInconsistentFacesBefore), previous);
                 previous = n;
                 t.inconsistent[k] += n;
-                t.faces[k] += s.counter("faces");
+                t.faces[k] += s.counter(counters::kFaces);
                 t.worst[k] = std::max(t.worst[k], n);
                 classifyInconsistent(s, t.classes[k]);
             }
@@ -855,10 +855,12 @@ private slots:
             {
                 const Snapshot& split = after(snapshots, "edge-splitting");
                 const Snapshot& removal = after(snapshots, "vertex-removal");
-                const double removed = removal.counter("vertices removed", -1.0);
+                const double removed = removal.counter(counters::kVerticesRemoved, -1.0);
                 QVERIFY(removed >= 0.0);
-                QCOMPARE(removal.counter("faces"), split.counter("faces") - 2.0 * removed);
-                QCOMPARE(removal.counter("vertices"), split.counter("vertices") - removed);
+                QCOMPARE(removal.counter(counters::kFaces),
+                         split.counter(counters::kFaces) - 2.0 * removed);
+                QCOMPARE(removal.counter(counters::kVertices),
+                         split.counter(counters::kVertices) - removed);
                 t.removed += removed;
             }
             const Snapshot& last = after(snapshots, kWiggleEnd);

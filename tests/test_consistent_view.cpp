@@ -418,10 +418,11 @@ void TestConsistentView::stepsEveryPhaseOnSpot() {
         qInfo("%-22s %7.1f ms: faces %g, inconsistent %g, undefined VBOs %g, FB edges %g, C "
               "vertices %g, cusps %g, radial faces %g, radial edges %g, post-condition "
               "violations %lld",
-              s.phaseName.c_str(), s.phaseSeconds * 1000.0, s.counter("faces"),
-              s.counter("inconsistent faces"), s.counter("undefined VBOs"),
-              s.counter("FB edges left"), s.counter("contour vertices"), s.counter("cusps"),
-              s.counter("radial faces"), s.counter("radial edges"), s.invariantViolations());
+              s.phaseName.c_str(), s.phaseSeconds * 1000.0, s.counter(counters::kFaces),
+              s.counter(counters::kInconsistentFaces), s.counter(counters::kUndefinedVBOs),
+              s.counter(counters::kFBEdgesLeft), s.counter(counters::kContourVertices),
+              s.counter(counters::kCusps), s.counter(counters::kRadialFaces),
+              s.counter(counters::kRadialEdges), s.invariantViolations());
         window_->sceneView()->grabImage().save(grabPath(
             QStringLiteral("phase%1_%2").arg(phase).arg(QString::fromStdString(s.phaseName))));
     }
@@ -484,7 +485,7 @@ void TestConsistentView::inconsistentOutlinesAfterContourInsertion() {
     for (int y = 0; y < reference.height(); ++y)
         for (int x = 0; x < reference.width(); ++x)
             expected += qRed(reference.pixel(x, y)) > 127;
-    QCOMPARE(static_cast<double>(inconsistent), s.counter("inconsistent faces"));
+    QCOMPARE(static_cast<double>(inconsistent), s.counter(counters::kInconsistentFaces));
     const double ratio = expected > 0 ? double(withOutlines.magenta) / double(expected) : 0.0;
     qInfo("contour-insertion: %lld inconsistent faces: %lld magenta pixels = %.3f%% of the "
           "%dx%d image (%.1f per face); the projected outlines cover %lld pixels: "
@@ -603,8 +604,8 @@ void TestConsistentView::radialOverlaysFromTheSide() {
     SceneView3D* view = window_->sceneView();
     const long long tinted = view->overlayElementCount(SceneOverlay::RadialFaces);
     const long long edges = view->overlayElementCount(SceneOverlay::RadialEdges);
-    QCOMPARE(static_cast<double>(edges), s.counter("radial edges"));
-    QVERIFY(tinted >= s.counter("radial faces"));
+    QCOMPARE(static_cast<double>(edges), s.counter(counters::kRadialEdges));
+    QVERIFY(tinted >= s.counter(counters::kRadialFaces));
     QVERIFY2(tinted > 0, "radial edge insertion made no radial face on spot");
     // Radial triangles stand in the radial planes, so the analysis camera
     // sees them edge-on: look from the side.

@@ -439,7 +439,7 @@ void TestGroundTruth::contourRefinementFollowsTheCurve() {
             sameLoops[on] += c.loopCountsMatch();
             sameFacesWithin[on] += c.faceSetsMatchWithinTolerance();
             beyond[on] += c.mismatchesBeyond;
-            inconsistent[on] = snapshot.counter("inconsistent faces", -1.0);
+            inconsistent[on] = snapshot.counter(counters::kInconsistentFaces, -1.0);
             if (on)
                 splits += static_cast<long long>(snapshot.counter("contour edges split", 0.0));
             else

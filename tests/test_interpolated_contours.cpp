@@ -79,7 +79,7 @@ private slots:
         if (shapeName == "two-spheres")
             QCOMPARE(loops, 2);
         QCOMPARE(s.invariantViolations(), 0LL);
-        QCOMPARE(s.counter("contour segments"), [&] {
+        QCOMPARE(s.counter(counters::kContourSegments), [&] {
             double n = 0;
             for (const Polyline& l : *s.curves)
                 n += l.type == CurveType::Contour ? l.segmentCount() : 0;

@@ -334,8 +334,8 @@ void TestMainWindow::stepperCountersMatchSnapshots() {
         sawBack |= name == QStringLiteral("back faces");
     }
     QVERIFY(sawFront && sawBack);
-    QCOMPARE(facing.counter("front faces") + facing.counter("back faces") +
-                 facing.counter("edge-on faces", 0.0),
+    QCOMPARE(facing.counter(counters::kFrontFaces) + facing.counter(counters::kBackFaces) +
+                 facing.counter(counters::kEdgeOnFaces, 0.0),
              static_cast<double>(facing.mesh->faceCount()));
 }
 

@@ -38,9 +38,9 @@ private slots:
         int open = 0;
         QCOMPARE(contourLoops(s, &open), 1);
         QCOMPARE(open, 0);
-        QCOMPARE(s.counter("concave contour edges"), 0.0);
-        QCOMPARE(s.counter("bifurcation vertices"), 0.0);
-        QVERIFY(s.counter("contour edges") > 10);
+        QCOMPARE(s.counter(counters::kConcaveContourEdges), 0.0);
+        QCOMPARE(s.counter(counters::kBifurcationVertices), 0.0);
+        QVERIFY(s.counter(counters::kContourEdges) > 10);
         QCOMPARE(s.invariantViolations(), 0LL);
     }
 
@@ -60,7 +60,7 @@ private slots:
         int open = 0;
         QCOMPARE(contourLoops(s, &open), 2);
         QCOMPARE(open, 0);
-        QVERIFY(s.counter("concave contour edges") > 0);
+        QVERIFY(s.counter(counters::kConcaveContourEdges) > 0);
         QCOMPARE(s.invariantViolations(), 0LL);
         const TriangleMesh& mesh = *s.mesh;
         const auto& label = *s.field(fields::kContourEdge)->labels();
@@ -111,7 +111,7 @@ private slots:
         for (const Polyline& line : *s.curves)
             boundaryLoops += line.type == CurveType::Boundary && line.closed;
         QCOMPARE(boundaryLoops, 1);
-        QVERIFY(s.counter("boundary edges") > 0);
+        QVERIFY(s.counter(counters::kBoundaryEdges) > 0);
         QCOMPARE(s.invariantViolations(), 0LL);
         ParameterSet noBoundaries;
         noBoundaries.set("include-boundaries", false);
@@ -149,7 +149,7 @@ private slots:
             expected += contourHere;
             QCOMPARE(label[e] != 0, contourHere);
         }
-        QCOMPARE(s.counter("contour edges"), static_cast<double>(expected));
+        QCOMPARE(s.counter(counters::kContourEdges), static_cast<double>(expected));
         // Dropping concave edges keeps only convex ones in the chains.
         ParameterSet drop;
         drop.set("drop-concave", true);
@@ -158,7 +158,7 @@ private slots:
         for (const Polyline& line : *t.curves)
             if (line.type == CurveType::Contour)
                 chained += line.segmentElement.size();
-        QCOMPARE(static_cast<double>(chained), t.counter("convex contour edges"));
+        QCOMPARE(static_cast<double>(chained), t.counter(counters::kConvexContourEdges));
     }
 };
 

@@ -112,11 +112,11 @@ private slots:
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
             const Snapshot& s = run.after("patch-search");
             const Snapshot& previous = run.after("vertex-removal");
-            const double in = s.counter("inconsistent faces before", -1.0);
-            const double out = s.counter("inconsistent faces", -1.0);
+            const double in = s.counter(counters::kInconsistentFacesBefore, -1.0);
+            const double out = s.counter(counters::kInconsistentFaces, -1.0);
             QVERIFY(in >= 0.0 && out >= 0.0);
             // The phase's input is what the previous phase published.
-            QCOMPARE(in, previous.counter("inconsistent faces", -2.0));
+            QCOMPARE(in, previous.counter(counters::kInconsistentFaces, -2.0));
             QVERIFY2(out <= in, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(in).arg(out)));
             const TriangleMesh& mesh = *s.mesh;
             for (Index f = 0; f < mesh.faceCount(); ++f) {
@@ -127,13 +127,14 @@ private slots:
                      mesh.faceCount());
             // A new vertex adds two faces; a relocation none.
             QCOMPARE(static_cast<double>(mesh.faceCount()),
-                     previous.counter("faces") + 2.0 * s.counter("vertices inserted"));
+                     previous.counter(counters::kFaces) +
+                         2.0 * s.counter(counters::kVerticesInserted));
             before += static_cast<long long>(in);
             after += static_cast<long long>(out);
-            inserted += static_cast<long long>(s.counter("vertices inserted"));
-            relocated += static_cast<long long>(s.counter("vertices relocated"));
+            inserted += static_cast<long long>(s.counter(counters::kVerticesInserted));
+            relocated += static_cast<long long>(s.counter(counters::kVerticesRelocated));
             finalFaces +=
-                static_cast<long long>(run.snapshots.back().counter("inconsistent faces"));
+                static_cast<long long>(run.snapshots.back().counter(counters::kInconsistentFaces));
         }
         qInfo("%s, %d views: inconsistent faces %lld before the patch search, %lld after it "
               "(%lld vertices inserted, %lld relocated), %lld at the end",
@@ -182,11 +183,11 @@ private slots:
             const QString violation = firstViolation(run);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
             const Snapshot& s = run.after("patch-search");
-            const double in = s.counter("inconsistent faces before", -1.0);
-            const double out = s.counter("inconsistent faces", -1.0);
+            const double in = s.counter(counters::kInconsistentFacesBefore, -1.0);
+            const double out = s.counter(counters::kInconsistentFaces, -1.0);
             QVERIFY(in >= 0.0 && out >= 0.0);
             QVERIFY2(out <= in, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(in).arg(out)));
-            const double refused = s.counter("moves skipped (the mesh would refuse an edit)", -1.0);
+            const double refused = s.counter(counters::kMovesSkippedTheMeshWouldRefuseAnEdit, -1.0);
             QVERIFY(refused >= 0.0);
             before += static_cast<long long>(in);
             after += static_cast<long long>(out);
@@ -212,9 +213,10 @@ private slots:
             const QString violation = firstViolation(run);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
             const Snapshot& s = run.after("patch-search");
-            QVERIFY(s.counter("inconsistent faces") <= s.counter("inconsistent faces before"));
-            relocated += static_cast<long long>(s.counter("vertices relocated"));
-            const double left = run.snapshots.back().counter("inconsistent faces", -1.0);
+            QVERIFY(s.counter(counters::kInconsistentFaces) <=
+                    s.counter(counters::kInconsistentFacesBefore));
+            relocated += static_cast<long long>(s.counter(counters::kVerticesRelocated));
+            const double left = run.snapshots.back().counter(counters::kInconsistentFaces, -1.0);
             QVERIFY2(left == 0.0, qPrintable(QString("view %1: %2 faces left").arg(v).arg(left)));
             finalFaces += static_cast<long long>(left);
         }
@@ -264,8 +266,9 @@ private slots:
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
             const Snapshot& s = on.after("patch-search");
             QCOMPARE(contourEdges(s), contourEdges(on.after("vertex-removal")));
-            QCOMPARE(off.after("patch-search").counter("C vertices slid along the contour"), 0.0);
-            slid += static_cast<long long>(s.counter("C vertices slid along the contour"));
+            QCOMPARE(off.after("patch-search").counter(counters::kCVerticesSlidAlongTheContour),
+                     0.0);
+            slid += static_cast<long long>(s.counter(counters::kCVerticesSlidAlongTheContour));
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
             QVERIFY2(worse.empty(), worse.c_str());
         }
@@ -306,9 +309,9 @@ private slots:
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
             const Snapshot& s = on.after("patch-search");
-            const double n = s.counter("new radial edges", -1.0);
+            const double n = s.counter(counters::kNewRadialEdges, -1.0);
             QVERIFY(n >= 0.0);
-            QCOMPARE(off.after("patch-search").counter("new radial edges"), 0.0);
+            QCOMPARE(off.after("patch-search").counter(counters::kNewRadialEdges), 0.0);
             QCOMPARE(static_cast<double>(radialEdges(s)),
                      static_cast<double>(radialEdges(on.after("vertex-removal"))) + n);
             added += static_cast<long long>(n);
@@ -346,8 +349,8 @@ private slots:
             const PhaseRun on = runView(cage, cameras[v], true, false, true, true, true, true);
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            QCOMPARE(off.after("patch-search").counter("new radial edges at cusps"), 0.0);
-            added += on.after("patch-search").counter("new radial edges at cusps", 0.0);
+            QCOMPARE(off.after("patch-search").counter(counters::kNewRadialEdgesAtCusps), 0.0);
+            added += on.after("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
             QVERIFY2(worse.empty(), worse.c_str());
         }
@@ -382,12 +385,12 @@ private slots:
                 runView(cage, cameras[v], true, false, true, true, true, true, true);
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            ties += on.after("patch-search").counter("new radial edges at cusps", 0.0) -
-                    off.after("patch-search").counter("new radial edges at cusps", 0.0);
+            ties += on.after("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0) -
+                    off.after("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
             QVERIFY2(worse.empty(), worse.c_str());
             if (cameras.size() == 1 || v == 16)
-                view16 = on.snapshots.back().counter("inconsistent faces", -1.0);
+                view16 = on.snapshots.back().counter(counters::kInconsistentFaces, -1.0);
         }
         qInfo("spot, %d views: %.0f more radial edges at cusps; final inconsistent faces %.0f "
               "without the tie-break, %.0f with it (%d views better; view 16: %.0f)",
@@ -403,11 +406,12 @@ private slots:
         const PhaseRun run = runView(cage, views(*cage)[2], false);
         const Snapshot& s = run.after("patch-search");
         const Snapshot& previous = run.after("vertex-removal");
-        QVERIFY(previous.counter("inconsistent faces") > 0.0);
-        QCOMPARE(s.counter("inconsistent faces"), previous.counter("inconsistent faces"));
+        QVERIFY(previous.counter(counters::kInconsistentFaces) > 0.0);
+        QCOMPARE(s.counter(counters::kInconsistentFaces),
+                 previous.counter(counters::kInconsistentFaces));
         QCOMPARE(s.mesh->faceCount(), previous.mesh->faceCount());
         QCOMPARE(s.mesh->vertexCount(), previous.mesh->vertexCount());
-        QCOMPARE(s.counter("vertices inserted"), 0.0);
+        QCOMPARE(s.counter(counters::kVerticesInserted), 0.0);
         bool noted = false;
         for (const std::string& n : s.notes)
             noted = noted || n.find("patch-search = false") != std::string::npos;

@@ -7,7 +7,7 @@
 //     26-view protocol on the Catmull-Clark sphere, torus and spot, with the
 //     inconsistent-face counts before and after (qInfo).
 #include "ContourTestSupport.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 #include "core/Predicates.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
@@ -202,28 +202,29 @@ struct Tally {
 // Sides of C vertices without a radial edge, except those left out on
 // purpose in a cusp's inside region (Fig. 18e, radial-cusp-inside-hops).
 double missingSides(const Snapshot& g) {
-    return g.counter("C vertex sides without a radial edge") -
-           g.counter("skipped: inside region of a nearby cusp", 0.0);
+    return g.counter(counters::kCVertexSidesWithoutARadialEdge) -
+           g.counter(counters::kSkippedInsideRegionOfANearbyCusp, 0.0);
 }
 
 void tally(Tally& t, const ViewRun& r) {
     ++t.views;
     for (int k = 0; k < 3; ++k) {
         const Snapshot& s = r.after(kPhases[k]);
-        t.inconsistent[k] += s.counter("inconsistent faces");
-        t.faces[k] += s.counter("faces");
-        t.percentSum[k] += 100.0 * s.counter("inconsistent faces") / s.counter("faces");
+        t.inconsistent[k] += s.counter(counters::kInconsistentFaces);
+        t.faces[k] += s.counter(counters::kFaces);
+        t.percentSum[k] +=
+            100.0 * s.counter(counters::kInconsistentFaces) / s.counter(counters::kFaces);
         t.seconds[k] += s.phaseSeconds;
     }
     const Snapshot& g = r.after("radial-edge-insertion");
     const Snapshot& h = r.after("radial-flips");
-    const double cv = g.counter("contour vertices");
+    const double cv = g.counter(counters::kContourVertices);
     t.contourVertices += cv;
     t.missingSides += missingSides(g);
     t.worstMissingFraction =
         std::max(t.worstMissingFraction, missingSides(g) / std::max(1.0, 2.0 * cv));
-    t.shareSum += h.counter("standard radial share (%)");
-    t.worstShare = std::min(t.worstShare, h.counter("standard radial share (%)"));
+    t.shareSum += h.counter(counters::kStandardRadialSharePercent);
+    t.worstShare = std::min(t.worstShare, h.counter(counters::kStandardRadialSharePercent));
     for (const char* name :
          {"radial edges inserted", "joint radial vertices (two C)", "fold-prevention flips",
           "radial insertions skipped", "skipped: no crossing face",
@@ -284,32 +285,35 @@ void checkShape(const char* name, const std::shared_ptr<const PolygonMesh>& cage
         const Snapshot& h = r.after("radial-flips");
         for (const Snapshot* s : {&g, &h}) {
             verifyNoViolations(*s);
-            QCOMPARE(s->counter("degenerate CC edges"), 0.0);
-            QCOMPARE(s->counter("undefined VBOs"), 0.0);
-            QCOMPARE(s->counter("FB edges left"), 0.0);
-            QCOMPARE(s->counter("folds introduced"), 0.0);
-            QCOMPARE(s->counter("folded faces"), ins.counter("folded faces"));
-            QCOMPARE(s->counter("contour vertices"), ins.counter("contour vertices"));
+            QCOMPARE(s->counter(counters::kDegenerateCCEdges), 0.0);
+            QCOMPARE(s->counter(counters::kUndefinedVBOs), 0.0);
+            QCOMPARE(s->counter(counters::kFBEdgesLeft), 0.0);
+            QCOMPARE(s->counter(counters::kFoldsIntroduced), 0.0);
+            QCOMPARE(s->counter(counters::kFoldedFaces), ins.counter(counters::kFoldedFaces));
+            QCOMPARE(s->counter(counters::kContourVertices),
+                     ins.counter(counters::kContourVertices));
         }
-        QVERIFY(g.counter("radial edges inserted") > 0);
-        QVERIFY(g.counter("radial edges") >= g.counter("radial edges inserted"));
-        QVERIFY2(h.counter("inconsistent faces") <= ins.counter("inconsistent faces"),
+        QVERIFY(g.counter(counters::kRadialEdgesInserted) > 0);
+        QVERIFY(g.counter(counters::kRadialEdges) >= g.counter(counters::kRadialEdgesInserted));
+        QVERIFY2(h.counter(counters::kInconsistentFaces) <=
+                     ins.counter(counters::kInconsistentFaces),
                  qPrintable(QString("%1: %2 inconsistent after radial-flips, %3 after "
                                     "contour-insertion")
                                 .arg(name)
-                                .arg(h.counter("inconsistent faces"))
-                                .arg(ins.counter("inconsistent faces"))));
-        const double sides = 2.0 * g.counter("contour vertices");
+                                .arg(h.counter(counters::kInconsistentFaces))
+                                .arg(ins.counter(counters::kInconsistentFaces))));
+        const double sides = 2.0 * g.counter(counters::kContourVertices);
         QVERIFY2(missingSides(g) <= floors.maxMissingFraction * sides,
                  qPrintable(QString("%1: %2 of %3 sides without a radial edge")
                                 .arg(name)
                                 .arg(missingSides(g))
                                 .arg(sides)));
-        QVERIFY2(h.counter("standard radial share (%)") >= floors.minShare,
+        QVERIFY2(h.counter(counters::kStandardRadialSharePercent) >= floors.minShare,
                  qPrintable(QString("%1: standard radial share %2 %")
                                 .arg(name)
-                                .arg(h.counter("standard radial share (%)"))));
-        QVERIFY(h.counter("standard radial share (%)") >= g.counter("standard radial share (%)"));
+                                .arg(h.counter(counters::kStandardRadialSharePercent))));
+        QVERIFY(h.counter(counters::kStandardRadialSharePercent) >=
+                g.counter(counters::kStandardRadialSharePercent));
         tally(t, r);
     }
     report(name, t);
@@ -422,8 +426,8 @@ private slots:
             missingOn += cuspRadialEdgesMissing(g);
             missingOff += cuspRadialEdgesMissing(off.after("radial-edge-insertion"));
             missingOneSide += cuspRadialEdgesMissing(oneSide.after("radial-edge-insertion"));
-            placed += g.counter("cusp radial edges on the opposite edge");
-            cusps += g.counter("cusps", 0.0);
+            placed += g.counter(counters::kCuspRadialEdgesOnTheOppositeEdge);
+            cusps += g.counter(counters::kCusps, 0.0);
         }
         qInfo("spot: cusp radial edges missing after radial-edge-insertion %d with the "
               "opposite-edge fallback (%.0f placed there), %d without, %d without one edge per "

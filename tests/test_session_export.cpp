@@ -269,7 +269,7 @@ void TestSessionExport::exportSnapshot() {
                  runner->snapshot(static_cast<int>(i) + 1).phaseSeconds);
     }
     QVERIFY(view.contains("view_graph"));
-    const int inconsistent = static_cast<int>(current.counter("inconsistent faces"));
+    const int inconsistent = static_cast<int>(current.counter(counters::kInconsistentFaces));
     QVERIFY(inconsistent >= 0);
     QCOMPARE(view["inconsistent_faces"].size(), static_cast<size_t>(inconsistent));
     QCOMPARE(view["totals"]["counters"]["inconsistent faces"].get<int>(), inconsistent);
@@ -348,8 +348,8 @@ void TestSessionExport::sessionRoundTrip() {
     // The same run: the same mesh and counts.
     QCOMPARE(other.currentSnapshot().mesh->faceCount(),
              window_->currentSnapshot().mesh->faceCount());
-    QCOMPARE(other.currentSnapshot().counter("inconsistent faces"),
-             window_->currentSnapshot().counter("inconsistent faces"));
+    QCOMPARE(other.currentSnapshot().counter(counters::kInconsistentFaces),
+             window_->currentSnapshot().counter(counters::kInconsistentFaces));
     for (int i = 0; i < kSceneOverlayCount; ++i)
         QCOMPARE(other.overlayAction(static_cast<SceneOverlay>(i))->isChecked(),
                  window_->overlayAction(static_cast<SceneOverlay>(i))->isChecked());

@@ -704,13 +704,13 @@ private slots:
             QCOMPARE(sphere->evaluate({face, uv.x(), uv.y()}).position, s.mesh->position(v));
         }
         QCOMPARE(s.field(fields::kDomainFace)->labels()->size(), size_t(s.mesh->faceCount()));
-        QCOMPARE(s.counter("domain faces"), 6.0);
-        QCOMPARE(s.counter("tessellation faces"), 2.0 * 6 * 9);
+        QCOMPARE(s.counter(counters::kDomainFaces), 6.0);
+        QCOMPARE(s.counter(counters::kTessellationFaces), 2.0 * 6 * 9);
         // A second view reuses the tessellation: same mesh and normals.
         const Snapshot t = withSurface(sphere, 3, perspectiveAt(Vec3(-5, 0, 1), Vec3::Zero()));
         QVERIFY(t.mesh == s.mesh);
         QVERIFY(t.fields.at(fields::kVertexNormal) == s.fields.at(fields::kVertexNormal));
-        QCOMPARE(t.counter("tessellation cached"), 1.0);
+        QCOMPARE(t.counter(counters::kTessellationCached), 1.0);
         QVERIFY(withSurface(sphere, 4, camera).mesh != s.mesh);
     }
 

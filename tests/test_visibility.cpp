@@ -382,7 +382,7 @@ private slots:
             QCOMPARE(g.chains[n.farChains[1]].qi, 2);
             QCOMPARE(g.chains[n.farChains[0]].qi, 0);
         }
-        QCOMPARE(s.counter("ray-check conflicts"), 0.0);
+        QCOMPARE(s.counter(counters::kRayCheckConflicts), 0.0);
     }
 
     // A torus seen from a grazing angle: the inner contour folds (curtain
@@ -404,7 +404,7 @@ private slots:
         qInfo("%s grazing torus: %lld curtain folds, %lld T-junctions, %zu chains, %g conflicts",
               qPrintable(method), nodesOf(g, ViewNodeType::CurtainFold),
               nodesOf(g, ViewNodeType::ImageIntersection), g.chains.size(),
-              s.counter("ray-check conflicts"));
+              s.counter(counters::kRayCheckConflicts));
         if (method == "mesh") {
             // The polygonal torus's own contour crosses itself.
             QVERIFY(nodesOf(g, ViewNodeType::ImageIntersection) >= 2);
@@ -421,7 +421,7 @@ private slots:
             QCOMPARE(nodesOf(g, ViewNodeType::ImageIntersection),
                      static_cast<long long>(imageCrossings(dense.compute(camera), camera)));
         }
-        QCOMPARE(s.counter("ray-check conflicts"), 0.0);
+        QCOMPARE(s.counter(counters::kRayCheckConflicts), 0.0);
         // Curtain folds where the one-ring occludes one side (tutorial
         // §4.7). The consistent mesh's near-face test (Bénard 2014 fn. 3)
         // also flags vertices where neither side is occluded: those carry
@@ -473,17 +473,17 @@ private slots:
             const Snapshot& s = run.after("visibility");
             verifyInvariants(s);
             verifyGraph(*s.viewGraph, method == "mesh");
-            if (s.counter("ray-check conflicts") != 0.0) {
+            if (s.counter(counters::kRayCheckConflicts) != 0.0) {
                 for (const VisibilityConflict& c : s.viewGraph->conflicts)
                     qWarning("view %zu: chain %d propagated %d ray %d (%s)", v, c.chain,
                              c.propagatedQi, c.rayQi, c.reason.c_str());
             }
-            conflicts += s.counter("ray-check conflicts");
-            below += s.counter("chains propagated below their bound");
-            seconds += s.counter("visibility seconds");
-            rays += s.counter("ray tests");
-            tJunctions += s.counter("T-junctions");
-            folds += s.counter("curtain folds");
+            conflicts += s.counter(counters::kRayCheckConflicts);
+            below += s.counter(counters::kChainsPropagatedBelowTheirBound);
+            seconds += s.counter(counters::kVisibilitySeconds);
+            rays += s.counter(counters::kRayTests);
+            tJunctions += s.counter(counters::kTJunctions);
+            folds += s.counter(counters::kCurtainFolds);
             ++runs;
         }
         qInfo("%s %s: %d views, %g ray-check conflicts, %g below bound, %.1f ms and %.0f rays "

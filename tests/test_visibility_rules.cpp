@@ -830,7 +830,7 @@ private slots:
                 if (b.chains[c].simplifiedAway)
                     QVERIFY(a.chains[c].visible() && a.chains[c].lengthPixels < 15.0);
             }
-            hidden += simp.counter("chains hidden by simplification");
+            hidden += simp.counter(counters::kChainsHiddenBySimplification);
             before += a.visibleLengthPixels();
             after += b.visibleLengthPixels();
         }

@@ -17,27 +17,40 @@ namespace {
 constexpr const char* kSimplify = "simplify";
 constexpr const char* kThreshold = "simplify-threshold";
 
+// The phase's parameters, read once per run (and by its post-conditions).
+struct SimplificationOptions {
+    bool enabled = false;   // simplify
+    double threshold = 0.0; // simplify-threshold, pixels
+    static SimplificationOptions read(const ParameterSet& p) {
+        SimplificationOptions o;
+        o.enabled = p.getBool(kSimplify);
+        o.threshold = p.getDouble(kThreshold);
+        return o;
+    }
+};
+
 void runSimplification(const PhaseContext& ctx, Snapshot& s) {
+    const SimplificationOptions options = SimplificationOptions::read(ctx.parameters);
     if (!s.viewGraph) {
         s.notes.push_back("simplification: no view graph (the visibility phase is off or "
                           "missing); nothing to simplify");
         return;
     }
-    if (!ctx.parameters.getBool(kSimplify)) {
+    if (!options.enabled) {
         s.notes.push_back("simplification is off (--simplify to turn it on): the view graph "
                           "is passed through unchanged");
-        s.setCounter("chains hidden by simplification", 0.0);
+        s.setCounter(counters::kChainsHiddenBySimplification, 0.0);
         return;
     }
-    const double threshold = ctx.parameters.getDouble(kThreshold);
+    const double threshold = options.threshold;
     auto graph = std::make_shared<ViewGraph>(*s.viewGraph);
     const double before = graph->visibleLengthPixels();
     const SimplificationResult result = simplifyViewGraph(*graph, threshold);
     const double after = graph->visibleLengthPixels();
-    s.setCounter("chains hidden by simplification", result.chainsHidden);
-    s.setCounter("simplification iterations", result.iterations);
-    s.setCounter("visible length before simplification (px)", before);
-    s.setCounter("visible length after simplification (px)", after);
+    s.setCounter(counters::kChainsHiddenBySimplification, result.chainsHidden);
+    s.setCounter(counters::kSimplificationIterations, result.iterations);
+    s.setCounter(counters::kVisibleLengthBeforeSimplificationPx, before);
+    s.setCounter(counters::kVisibleLengthAfterSimplificationPx, after);
     std::ostringstream note;
     note << "simplification (Bénard 2014 §9, threshold " << threshold << " px) hid "
          << result.chainsHidden << " chains (" << before - after << " px of " << before
@@ -50,9 +63,10 @@ std::vector<InvariantCheck> checkSimplification(const PhaseContext& ctx, const S
     InvariantCheck longHidden{"no chain longer than the threshold is simplified away", 0, {}};
     InvariantCheck fixedPoint{
         "simplification is at its fixed point (a second run hides nothing)", 0, {}};
-    if (!s.viewGraph || !ctx.parameters.getBool(kSimplify))
+    const SimplificationOptions options = SimplificationOptions::read(ctx.parameters);
+    if (!s.viewGraph || !options.enabled)
         return {longHidden, fixedPoint};
-    const double threshold = ctx.parameters.getDouble(kThreshold);
+    const double threshold = options.threshold;
     const ViewGraph& g = *s.viewGraph;
     for (size_t c = 0; c < g.chains.size(); ++c)
         if (g.chains[c].simplifiedAway && !(g.chains[c].lengthPixels < threshold)) {

@@ -79,8 +79,35 @@ std::vector<std::uint8_t> byteField(const Snapshot& s, const char* name, bool in
     return out;
 }
 
+// The phase's parameters, read once per run (each flavour declares its own).
+struct VisibilityOptions {
+    bool enabled = false;              // visibility
+    bool surfaceIntersections = false; // surface-intersections
+    bool checkRays = false;            // visibility-check-rays
+    double nearFaceEpsilon = 0.0;      // consistent: near-face-epsilon
+    double shortChainPixels = 0.0;     // consistent: ambiguity-short-chain
+    int votes = 0;                     // interpolated: visibility-votes
+    std::string ignoredFaces;          // interpolated: visibility-ignored-faces
+    static VisibilityOptions read(VisibilityFlavor flavor, const ParameterSet& p) {
+        VisibilityOptions o;
+        o.enabled = p.getBool(kVisibility);
+        o.surfaceIntersections = p.getBool(kSurfaceIntersections);
+        o.checkRays = p.getBool(kCheckRays);
+        if (flavor == VisibilityFlavor::Consistent) {
+            o.nearFaceEpsilon = p.getDouble(kNearFaceEpsilon);
+            o.shortChainPixels = p.getDouble(kShortChain);
+        }
+        if (flavor == VisibilityFlavor::Interpolated) {
+            o.votes = p.getInt(kVotes);
+            o.ignoredFaces = p.getChoice(kIgnoredFaces);
+        }
+        return o;
+    }
+};
+
 void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s) {
-    if (!ctx.parameters.getBool(kVisibility)) {
+    const VisibilityOptions parameters = VisibilityOptions::read(flavor, ctx.parameters);
+    if (!parameters.enabled) {
         s.viewGraph.reset();
         s.notes.push_back("visibility is off (--visibility true to turn it on): no view graph, "
                           "the curves are passed through unchanged");
@@ -116,13 +143,13 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     std::shared_ptr<ViewGraph> graph;
     double buildSeconds = 0.0;
     auto intersections = [&] {
-        if (ctx.parameters.getBool(kSurfaceIntersections)) {
+        if (parameters.surfaceIntersections) {
             bool cached = false;
             const auto t0 = std::chrono::steady_clock::now();
             const std::shared_ptr<const SurfaceIntersectionCurves> found =
                 cachedSurfaceIntersections(s.mesh, &cached);
             intersectionSeconds = secondsSince(t0);
-            s.setCounter("surface intersections cached", cached ? 1.0 : 0.0);
+            s.setCounter(counters::kSurfaceIntersectionsCached, cached ? 1.0 : 0.0);
             intersectionCurves = static_cast<long long>(found->curves.size());
             for (size_t i = 0; i < found->curves.size(); ++i) {
                 curves.push_back(found->curves[i]);
@@ -149,7 +176,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                            : flavor == VisibilityFlavor::Consistent ? CurtainFoldTest::NearFace
                                                                     : CurtainFoldTest::None;
         if (flavor == VisibilityFlavor::Consistent)
-            options.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
+            options.nearFaceEpsilon = parameters.nearFaceEpsilon;
         // Exact mesh visibility needs every fold of the mesh as an occluder
         // (see ViewGraphOptions); interpolated contours keep the tutorial's
         // simpler model where the curves themselves occlude.
@@ -176,7 +203,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     ctx.checkCancelled();
 
     const RayCaster& rays = *rayCaster;
-    const bool checkRays = ctx.parameters.getBool(kCheckRays);
+    const bool checkRays = parameters.checkRays;
     QiPropagationStats propagated;
     // Consistent contours: the rays of propagation and of the check from
     // each chain's middle segment are the ones §8.4 votes with there; they
@@ -191,13 +218,11 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         // mesh's folds, so the +2/+1 propagation rules do not hold for them;
         // the heuristic vote decides, and the check rays say where it
         // disagrees with a single ray.
-        const std::optional<IgnoredFaces> ignored =
-            ignoredFacesFromString(ctx.parameters.getChoice(kIgnoredFaces));
+        const std::optional<IgnoredFaces> ignored = ignoredFacesFromString(parameters.ignoredFaces);
         if (!ignored)
             throw std::invalid_argument("unknown " + std::string(kIgnoredFaces) + " '" +
-                                        ctx.parameters.getChoice(kIgnoredFaces) + "'");
-        voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, ctx.parameters.getInt(kVotes),
-                                   *ignored);
+                                        parameters.ignoredFaces + "'");
+        voteInterpolatedVisibility(*graph, mesh, ctx.camera, rays, parameters.votes, *ignored);
         qiSeconds = secondsSince(tQi);
         if (checkRays) {
             const auto tCheck = std::chrono::steady_clock::now();
@@ -218,8 +243,8 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
 
     if (flavor == VisibilityFlavor::Consistent) {
         ConsistentVisibilityOptions consistent;
-        consistent.nearFaceEpsilon = ctx.parameters.getDouble(kNearFaceEpsilon);
-        consistent.shortChainPixels = ctx.parameters.getDouble(kShortChain);
+        consistent.nearFaceEpsilon = parameters.nearFaceEpsilon;
+        consistent.shortChainPixels = parameters.shortChainPixels;
         const auto tConsistent = std::chrono::steady_clock::now();
         resolveConsistentVisibility(
             *graph, mesh, ctx.camera, rays,
@@ -242,63 +267,73 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         ++perType[n.type];
         unreliable += n.unreliable;
     }
-    s.setCounter("chains", static_cast<double>(graph->chains.size()));
-    s.setCounter("visible chains", static_cast<double>(visible));
-    s.setCounter("concave contour chains", static_cast<double>(concave));
-    s.setCounter("nodes", static_cast<double>(graph->nodes.size()));
-    for (ViewNodeType t : {ViewNodeType::CurtainFold, ViewNodeType::BoundaryCurtainFold,
-                           ViewNodeType::ImageIntersection, ViewNodeType::ContourBoundaryJunction,
-                           ViewNodeType::Bifurcation, ViewNodeType::SurfaceIntersectionEnd,
-                           ViewNodeType::CurveEnd, ViewNodeType::HiddenFoldCrossing})
-        s.setCounter(std::string("nodes: ") + toString(t), static_cast<double>(perType[t]));
-    s.setCounter("T-junctions", static_cast<double>(perType[ViewNodeType::ImageIntersection]));
-    s.setCounter("curtain folds", static_cast<double>(perType[ViewNodeType::CurtainFold]));
-    s.setCounter("surface-intersection curves", static_cast<double>(intersectionCurves));
-    s.setCounter("connected components", static_cast<double>(propagated.components));
-    s.setCounter("ray tests", static_cast<double>(graph->rayTests));
-    s.setCounter("conflicts", static_cast<double>(graph->conflicts.size()));
-    s.setCounter("ray-check conflicts", static_cast<double>(propagated.rayConflicts));
-    s.setCounter("check rays recounted exactly", static_cast<double>(propagated.exactRecounts));
-    s.setCounter("check rays corrected by the exact recount",
+    s.setCounter(counters::kChains, static_cast<double>(graph->chains.size()));
+    s.setCounter(counters::kVisibleChains, static_cast<double>(visible));
+    s.setCounter(counters::kConcaveContourChains, static_cast<double>(concave));
+    s.setCounter(counters::kNodes, static_cast<double>(graph->nodes.size()));
+    // "nodes: " + toString(type), in this order.
+    for (const auto& [t, name] :
+         {std::pair{ViewNodeType::CurtainFold, counters::kNodesCurtainFold},
+          std::pair{ViewNodeType::BoundaryCurtainFold, counters::kNodesBoundaryCurtainFold},
+          std::pair{ViewNodeType::ImageIntersection, counters::kNodesImageIntersection},
+          std::pair{ViewNodeType::ContourBoundaryJunction, counters::kNodesContourBoundaryJunction},
+          std::pair{ViewNodeType::Bifurcation, counters::kNodesBifurcation},
+          std::pair{ViewNodeType::SurfaceIntersectionEnd, counters::kNodesSurfaceIntersectionEnd},
+          std::pair{ViewNodeType::CurveEnd, counters::kNodesCurveEnd},
+          std::pair{ViewNodeType::HiddenFoldCrossing, counters::kNodesHiddenFoldCrossing}})
+        s.setCounter(name, static_cast<double>(perType[t]));
+    s.setCounter(counters::kTJunctions,
+                 static_cast<double>(perType[ViewNodeType::ImageIntersection]));
+    s.setCounter(counters::kCurtainFolds, static_cast<double>(perType[ViewNodeType::CurtainFold]));
+    s.setCounter(counters::kSurfaceIntersectionCurves, static_cast<double>(intersectionCurves));
+    s.setCounter(counters::kConnectedComponents, static_cast<double>(propagated.components));
+    s.setCounter(counters::kRayTests, static_cast<double>(graph->rayTests));
+    s.setCounter(counters::kConflicts, static_cast<double>(graph->conflicts.size()));
+    s.setCounter(counters::kRayCheckConflicts, static_cast<double>(propagated.rayConflicts));
+    s.setCounter(counters::kCheckRaysRecountedExactly,
+                 static_cast<double>(propagated.exactRecounts));
+    s.setCounter(counters::kCheckRaysCorrectedByTheExactRecount,
                  static_cast<double>(propagated.correctedRays));
-    s.setCounter("propagation cycle disagreements",
+    s.setCounter(counters::kPropagationCycleDisagreements,
                  static_cast<double>(propagated.cycleDisagreements));
-    s.setCounter("chains propagated below their bound",
+    s.setCounter(counters::kChainsPropagatedBelowTheirBound,
                  static_cast<double>(propagated.belowLowerBound));
-    s.setCounter("visible length px", graph->visibleLengthPixels());
-    s.setCounter("hidden length px", graph->hiddenLengthPixels());
-    s.setCounter("image segments", static_cast<double>(built.segments));
-    s.setCounter("image segments swept", static_cast<double>(built.sweptSegments));
-    s.setCounter("image crossings", static_cast<double>(built.imageCrossings));
-    s.setCounter("logical crossings ignored", static_cast<double>(built.logicalCrossings));
-    s.setCounter("endpoint touches ignored", static_cast<double>(built.endpointTouches));
-    s.setCounter("overlapping segment pairs", static_cast<double>(built.overlaps));
-    s.setCounter("crossings behind non-fold edges", static_cast<double>(built.nonFoldNear));
-    s.setCounter("fold edges off the curves", static_cast<double>(built.foldOccluderEdges));
-    s.setCounter("curtain folds by the one-ring test alone",
+    s.setCounter(counters::kVisibleLengthPx, graph->visibleLengthPixels());
+    s.setCounter(counters::kHiddenLengthPx, graph->hiddenLengthPixels());
+    s.setCounter(counters::kImageSegments, static_cast<double>(built.segments));
+    s.setCounter(counters::kImageSegmentsSwept, static_cast<double>(built.sweptSegments));
+    s.setCounter(counters::kImageCrossings, static_cast<double>(built.imageCrossings));
+    s.setCounter(counters::kLogicalCrossingsIgnored, static_cast<double>(built.logicalCrossings));
+    s.setCounter(counters::kEndpointTouchesIgnored, static_cast<double>(built.endpointTouches));
+    s.setCounter(counters::kOverlappingSegmentPairs, static_cast<double>(built.overlaps));
+    s.setCounter(counters::kCrossingsBehindNonFoldEdges, static_cast<double>(built.nonFoldNear));
+    s.setCounter(counters::kFoldEdgesOffTheCurves, static_cast<double>(built.foldOccluderEdges));
+    s.setCounter(counters::kCurtainFoldsByTheOneRingTestAlone,
                  static_cast<double>(built.localOnlyFolds));
-    s.setCounter("curtain folds without a local step", static_cast<double>(built.foldsWithoutStep));
-    s.setCounter("curtain folds occluding the convex side",
+    s.setCounter(counters::kCurtainFoldsWithoutALocalStep,
+                 static_cast<double>(built.foldsWithoutStep));
+    s.setCounter(counters::kCurtainFoldsOccludingTheConvexSide,
                  static_cast<double>(built.convexFarFolds));
-    s.setCounter("mixed-convexity chains", static_cast<double>(built.mixedConvexityChains));
+    s.setCounter(counters::kMixedConvexityChains, static_cast<double>(built.mixedConvexityChains));
     if (flavor == VisibilityFlavor::Consistent)
-        s.setCounter("unreliable near-face nodes", static_cast<double>(unreliable));
-    s.setCounter("surface intersections seconds", intersectionSeconds);
-    s.setCounter("view graph seconds", buildSeconds);
-    s.setCounter("sweep seconds", built.sweepSeconds);
+        s.setCounter(counters::kUnreliableNearFaceNodes, static_cast<double>(unreliable));
+    s.setCounter(counters::kSurfaceIntersectionsSeconds, intersectionSeconds);
+    s.setCounter(counters::kViewGraphSeconds, buildSeconds);
+    s.setCounter(counters::kSweepSeconds, built.sweepSeconds);
     // Built while the surface intersections and the graph are computed (on
     // the other core when there is one): this time overlaps "surface
     // intersections seconds" and "view graph seconds".
-    s.setCounter("ray scene seconds", sceneSeconds);
-    s.setCounter("ray and QI seconds", raySeconds);
+    s.setCounter(counters::kRaySceneSeconds, sceneSeconds);
+    s.setCounter(counters::kRayAndQISeconds, raySeconds);
     // Its parts: propagation with one ray per component (or the heuristic
     // votes), the optional check rays, Bénard 2014 §8.4.
-    s.setCounter(flavor == VisibilityFlavor::Interpolated ? "vote seconds" : "propagation seconds",
+    s.setCounter(flavor == VisibilityFlavor::Interpolated ? counters::kVoteSeconds
+                                                          : counters::kPropagationSeconds,
                  qiSeconds);
-    s.setCounter("check rays seconds", checkSeconds);
+    s.setCounter(counters::kCheckRaysSeconds, checkSeconds);
     if (flavor == VisibilityFlavor::Consistent)
-        s.setCounter("consistent visibility seconds", consistentSeconds);
-    s.setCounter("visibility seconds", secondsSince(start));
+        s.setCounter(counters::kConsistentVisibilitySeconds, consistentSeconds);
+    s.setCounter(counters::kVisibilitySeconds, secondsSince(start));
 
     // Notes: what a user should know about this result.
     std::ostringstream note;
@@ -333,7 +368,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     if (flavor == VisibilityFlavor::Interpolated)
         s.notes.push_back("interpolated contours: visibility is a vote of ray tests per chain "
                           "ignoring the contour's " +
-                          ctx.parameters.getChoice(kIgnoredFaces) +
+                          parameters.ignoredFaces +
                           " (tutorial §6.2.4), approximate by design: expect gaps and halos");
     s.viewGraph = std::move(graph);
     s.curves = std::make_shared<const std::vector<Polyline>>(std::move(curves));
@@ -355,7 +390,7 @@ std::vector<InvariantCheck> checkVisibility(VisibilityFlavor flavor, const Phase
     }
     const ViewGraph& g = *s.viewGraph;
     // Theorem B.0.1 needs a mesh without self-intersections.
-    const bool selfIntersecting = s.counter("surface-intersection curves", 0.0) > 0.0;
+    const bool selfIntersecting = s.counter(counters::kSurfaceIntersectionCurves, 0.0) > 0.0;
     auto violate = [](InvariantCheck& c, const std::string& example) {
         if (c.violations++ == 0)
             c.firstExample = example;

@@ -56,8 +56,8 @@
 #include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
-#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "pipeline/Runner.h"
 
@@ -315,7 +315,7 @@ ViewResult runView(const Method& method, const Snapshot& input, const Camera& ca
         if (gCounters)
             writeCounters(view, s);
         r.phaseSeconds.push_back(s.phaseSeconds);
-        r.phaseInconsistent.push_back(s.counter("inconsistent faces"));
+        r.phaseInconsistent.push_back(s.counter(counters::kInconsistentFaces));
         r.violations += s.invariantViolations();
         for (const InvariantCheck& c : s.invariants)
             if (c.violations > 0)
@@ -323,11 +323,11 @@ ViewResult runView(const Method& method, const Snapshot& input, const Camera& ca
                                               std::to_string(c.violations) + "x), first " +
                                               c.firstExample);
         if (r.initialFaces < 0.0)
-            r.initialFaces = s.counter("initial faces");
+            r.initialFaces = s.counter(counters::kInitialFaces);
     }
     const Snapshot& last = runner.current();
-    r.faces = last.counter("faces", last.mesh ? last.mesh->faceCount() : -1.0);
-    r.inconsistent = last.counter("inconsistent faces");
+    r.faces = last.counter(counters::kFaces, last.mesh ? last.mesh->faceCount() : -1.0);
+    r.inconsistent = last.counter(counters::kInconsistentFaces);
     if (gClassify)
         r.classes = classify(last);
     return r;

@@ -155,8 +155,8 @@ struct ViewResult {
 // "contour edges" for the mesh method, "crossing edges" (edges the
 // interpolated contour crosses) for the interpolated one.
 double contourEdgeCount(const contour::Snapshot& s) {
-    const double edges = s.counter("contour edges");
-    return edges >= 0 ? edges : s.counter("crossing edges");
+    const double edges = s.counter(contour::counters::kContourEdges);
+    return edges >= 0 ? edges : s.counter(contour::counters::kCrossingEdges);
 }
 
 ViewResult runView(const contour::Method& method, const contour::Snapshot& input,
@@ -184,7 +184,7 @@ ViewResult runView(const contour::Method& method, const contour::Snapshot& input
     r.checkSeconds = stepSeconds - phaseSum;
     const contour::Snapshot& last = runner->current();
     r.contourEdges = contourEdgeCount(last);
-    r.chains = last.counter("contour chains");
+    r.chains = last.counter(contour::counters::kContourChains);
     for (const contour::Polyline& line : *last.curves)
         if (line.type == contour::CurveType::Contour)
             r.segments += static_cast<double>(line.segmentCount());

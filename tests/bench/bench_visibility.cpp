@@ -393,10 +393,12 @@ TimingRow timeMethod(const Method& method, const std::string& setup,
         std::printf("      %.0f image segments, %.0f swept, %.0f crossings (%.0f logical), "
                     "%.0f surface-intersection curves, %.0f cached; fingerprint %016llx, "
                     "geometry %016llx, details %016llx (best of %d)\n",
-                    s.counter("image segments", 0.0), s.counter("image segments swept", 0.0),
-                    s.counter("image crossings", 0.0), s.counter("logical crossings ignored", 0.0),
-                    s.counter("surface-intersection curves", 0.0),
-                    s.counter("surface intersections cached", 0.0),
+                    s.counter(counters::kImageSegments, 0.0),
+                    s.counter(counters::kImageSegmentsSwept, 0.0),
+                    s.counter(counters::kImageCrossings, 0.0),
+                    s.counter(counters::kLogicalCrossingsIgnored, 0.0),
+                    s.counter(counters::kSurfaceIntersectionCurves, 0.0),
+                    s.counter(counters::kSurfaceIntersectionsCached, 0.0),
                     static_cast<unsigned long long>(graphPrint),
                     static_cast<unsigned long long>(geometryPrint),
                     static_cast<unsigned long long>(detailPrint(g)), runs);

@@ -28,16 +28,16 @@ std::vector<Polyline> edgePolylines(const TriangleMesh& mesh, std::span<const In
     return lines;
 }
 
-void publishCurves(const PhaseContext& ctx, Snapshot& s, std::vector<Polyline> contours) {
+void publishCurves(Snapshot& s, std::vector<Polyline> contours, bool includeBoundaries) {
     long long loops = 0;
     for (const Polyline& line : contours)
         loops += line.closed;
-    s.setCounter("contour chains", static_cast<double>(contours.size()));
-    s.setCounter("closed loops", static_cast<double>(loops));
-    s.setCounter("open chains", static_cast<double>(contours.size() - loops));
-    if (ctx.parameters.has("include-boundaries") && ctx.parameters.getBool("include-boundaries")) {
+    s.setCounter(counters::kContourChains, static_cast<double>(contours.size()));
+    s.setCounter(counters::kClosedLoops, static_cast<double>(loops));
+    s.setCounter(counters::kOpenChains, static_cast<double>(contours.size() - loops));
+    if (includeBoundaries) {
         std::vector<Polyline> boundary = boundaryPolylines(*s.mesh);
-        s.setCounter("boundary curves", static_cast<double>(boundary.size()));
+        s.setCounter(counters::kBoundaryCurves, static_cast<double>(boundary.size()));
         contours.insert(contours.end(), std::make_move_iterator(boundary.begin()),
                         std::make_move_iterator(boundary.end()));
     }

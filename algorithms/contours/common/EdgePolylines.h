@@ -13,9 +13,10 @@ namespace contour {
 std::vector<Polyline> edgePolylines(const TriangleMesh& mesh, std::span<const Index> edges,
                                     CurveType type);
 
-// Sets s.curves to `contours` plus, when the method's `include-boundaries`
-// parameter is on, the mesh's boundary polylines; sets the counters
-// "contour chains", "closed loops", "open chains" and "boundary curves".
-void publishCurves(const PhaseContext& ctx, Snapshot& s, std::vector<Polyline> contours);
+// Sets s.curves to `contours` plus, with `includeBoundaries` (the calling
+// method's include-boundaries parameter), the mesh's boundary polylines;
+// sets the counters "contour chains", "closed loops", "open chains" and
+// "boundary curves".
+void publishCurves(Snapshot& s, std::vector<Polyline> contours, bool includeBoundaries);
 
 } // namespace contour

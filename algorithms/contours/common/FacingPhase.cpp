@@ -28,9 +28,9 @@ void publishFaceFacing(const PhaseContext& ctx, Snapshot& s) {
     }
     s.setField(fields::kFacing, {FieldLocation::Face, std::move(facing),
                                  "+1 front-facing, -1 back-facing, 0 edge-on (exact predicate)"});
-    s.setCounter("front faces", static_cast<double>(front));
-    s.setCounter("back faces", static_cast<double>(back));
-    s.setCounter("edge-on faces", static_cast<double>(edgeOn));
+    s.setCounter(counters::kFrontFaces, static_cast<double>(front));
+    s.setCounter(counters::kBackFaces, static_cast<double>(back));
+    s.setCounter(counters::kEdgeOnFaces, static_cast<double>(edgeOn));
     if (edgeOn > 0)
         s.notes.push_back(std::to_string(edgeOn) +
                           " faces are exactly edge-on (not in generic position, tutorial §3.5); "

@@ -129,10 +129,10 @@ CachedEntry cachedTessellation(const std::shared_ptr<const SmoothSurface>& surfa
 }
 
 void setMeshCounters(Snapshot& s) {
-    s.setCounter("faces", s.mesh->faceCount());
-    s.setCounter("vertices", s.mesh->vertexCount());
-    s.setCounter("edges", s.mesh->edgeCount());
-    s.setCounter("boundary edges", s.mesh->boundaryEdgeCount());
+    s.setCounter(counters::kFaces, s.mesh->faceCount());
+    s.setCounter(counters::kVertices, s.mesh->vertexCount());
+    s.setCounter(counters::kEdges, s.mesh->edgeCount());
+    s.setCounter(counters::kBoundaryEdges, s.mesh->boundaryEdgeCount());
 }
 
 std::optional<SurfaceKind> kindOrThrow(const ParameterSet& parameters, const Snapshot& s) {
@@ -144,28 +144,42 @@ std::optional<SurfaceKind> kindOrThrow(const ParameterSet& parameters, const Sna
     return selectedSurfaceKind(parameters, *s.cage);
 }
 
-void runSurfacePhase(const PhaseContext& ctx, Snapshot& s, NoneSurfaceNormals noneNormals) {
+// The phase's parameters, read once per run.
+struct SurfacePhaseOptions {
+    int tessellationLevel = 0; // tessellation-level
+    // The weighting of the vertex normals published with surface = none.
+    std::optional<NormalWeighting> noneWeighting;
+    static SurfacePhaseOptions read(const ParameterSet& p, const NoneSurfaceNormals& noneNormals) {
+        SurfacePhaseOptions o;
+        o.tessellationLevel = p.getInt("tessellation-level");
+        if (noneNormals.weighting)
+            o.noneWeighting = noneNormals.weighting(p);
+        return o;
+    }
+};
+
+void runSurfacePhase(const PhaseContext& ctx, Snapshot& s, const NoneSurfaceNormals& noneNormals) {
+    const SurfacePhaseOptions options = SurfacePhaseOptions::read(ctx.parameters, noneNormals);
     const std::optional<SurfaceKind> kind = kindOrThrow(ctx.parameters, s);
     if (!kind) {
         // The triangulated cage stays the working mesh.
-        s.setCounter("domain faces", s.cage ? s.cage->faceCount() : s.mesh->faceCount());
-        s.setCounter("tessellation faces", s.mesh->faceCount());
-        s.setCounter("surface setup seconds", 0.0);
-        if (noneNormals == NoneSurfaceNormals::WeightedAverage)
-            s.fields[fields::kVertexNormal] = cachedVertexNormals(
-                s.mesh, normalWeightingFromName(ctx.parameters.getChoice("normal-weighting")));
+        s.setCounter(counters::kDomainFaces, s.cage ? s.cage->faceCount() : s.mesh->faceCount());
+        s.setCounter(counters::kTessellationFaces, s.mesh->faceCount());
+        s.setCounter(counters::kSurfaceSetupSeconds, 0.0);
+        if (options.noneWeighting)
+            s.fields[fields::kVertexNormal] = cachedVertexNormals(s.mesh, *options.noneWeighting);
         return;
     }
     const auto start = std::chrono::steady_clock::now();
     const CachedSmoothSurface surface = cachedSmoothSurface(s.cage, *kind);
-    s.setCounter("surface setup seconds",
+    s.setCounter(counters::kSurfaceSetupSeconds,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    s.setCounter("surface build seconds", surface.buildSeconds);
-    s.setCounter("surface cached", surface.fromCache ? 1.0 : 0.0);
+    s.setCounter(counters::kSurfaceBuildSeconds, surface.buildSeconds);
+    s.setCounter(counters::kSurfaceCached, surface.fromCache ? 1.0 : 0.0);
     ctx.checkCancelled();
     ctx.reportProgress(0.5);
-    applySmoothSurface(s, surface.surface, ctx.parameters.getInt("tessellation-level"), ctx.camera);
-    if (noneNormals == NoneSurfaceNormals::WeightedAverage)
+    applySmoothSurface(s, surface.surface, options.tessellationLevel, ctx.camera);
+    if (options.noneWeighting)
         s.notes.push_back("vertex normals are the smooth surface's exact normals; the "
                           "normal-weighting parameter applies only with surface = none");
 }
@@ -188,9 +202,9 @@ std::vector<InvariantCheck> checkSurfacePhase(const PhaseContext& ctx, const Sna
         if (!surface.surface->contains({face[v], uv[v].x(), uv[v].y()}) && inside.violations++ == 0)
             inside.firstExample = "vertex " + std::to_string(v);
     }
-    const Index domainBoundary = static_cast<Index>(s.counter("domain boundary edges"));
+    const Index domainBoundary = static_cast<Index>(s.counter(counters::kDomainBoundaryEdges));
     if (mesh.boundaryEdgeCount() !=
-        domainBoundary * static_cast<Index>(s.counter("tessellation level"))) {
+        domainBoundary * static_cast<Index>(s.counter(counters::kTessellationLevel))) {
         closed.violations = 1;
         closed.firstExample = std::to_string(mesh.boundaryEdgeCount()) + " boundary edges for " +
                               std::to_string(domainBoundary) + " domain boundary edges";
@@ -261,12 +275,12 @@ void applySmoothSurface(Snapshot& s, const std::shared_ptr<const SmoothSurface>&
                 "radial curvature: normal curvature along the view vector projected onto the "
                 "tangent plane; < 0 at an ordinary exterior contour; NaN where undefined"});
     setMeshCounters(s);
-    s.setCounter("domain faces", e.domainFaces);
-    s.setCounter("tessellation faces", e.mesh->faceCount());
-    s.setCounter("domain boundary edges", e.domainBoundaryEdges);
-    s.setCounter("tessellation level", level);
-    s.setCounter("tessellation seconds", cached.fromCache ? 0.0 : e.seconds);
-    s.setCounter("tessellation cached", cached.fromCache ? 1.0 : 0.0);
+    s.setCounter(counters::kDomainFaces, e.domainFaces);
+    s.setCounter(counters::kTessellationFaces, e.mesh->faceCount());
+    s.setCounter(counters::kDomainBoundaryEdges, e.domainBoundaryEdges);
+    s.setCounter(counters::kTessellationLevel, level);
+    s.setCounter(counters::kTessellationSeconds, cached.fromCache ? 0.0 : e.seconds);
+    s.setCounter(counters::kTessellationCached, cached.fromCache ? 1.0 : 0.0);
     s.notes.push_back(surface->description());
     if (undefined > 0)
         s.notes.push_back(std::to_string(undefined) +

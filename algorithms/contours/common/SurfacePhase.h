@@ -1,6 +1,6 @@
 #pragma once
 // The first phase of the mesh-based methods: which surface the contours are
-// computed on (issue 3). With `surface` = none the working mesh stays the
+// computed on. With `surface` = none the working mesh stays the
 // triangulated cage (the methods' original behaviour). Otherwise the phase
 // builds the smooth surface of the cage (Catmull-Clark, Loop or vertex-normal
 // patches; cached per cage), tessellates it uniformly at `tessellation-level`
@@ -10,9 +10,11 @@
 // preimage_face and preimage_uv, gaussian_curvature, mean_curvature and the
 // view-dependent radial_curvature (SurfaceFields.h for the sign conventions),
 // and per face domain_face.
+#include "mesh/VertexNormals.h"
 #include "pipeline/Method.h"
 #include "surface/SmoothSurface.h"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -28,11 +30,15 @@ std::vector<ParameterSpec> surfaceParameters();
 std::optional<SurfaceKind> selectedSurfaceKind(const ParameterSet& parameters,
                                                const PolygonMesh& cage);
 
-// What the phase does for `surface` = none besides keeping the mesh: the
-// interpolated method publishes the weighted-average vertex normals of its
-// `normal-weighting` parameter there, so that every later phase reads the
-// normals from one field whatever the surface.
-enum class NoneSurfaceNormals { Omit, WeightedAverage };
+// What the phase does for `surface` = none besides keeping the mesh: a
+// method that gives `weighting` (its own parameter read from the run's
+// parameters: the interpolated method's normal-weighting) has the
+// weighted-average vertex normals published there, so that every later
+// phase reads the normals from one field whatever the surface. Empty: no
+// normals are published.
+struct NoneSurfaceNormals {
+    std::function<NormalWeighting(const ParameterSet&)> weighting;
+};
 Phase makeSurfacePhase(NoneSurfaceNormals noneNormals);
 
 // The work of the phase for a given surface: replaces s.mesh by the

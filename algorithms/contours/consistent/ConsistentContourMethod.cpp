@@ -5,8 +5,8 @@
 #include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "contours/consistent/ConsistentOutputs.h"
-#include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
 #include "visibility/SimplificationPhase.h"
 #include "visibility/VisibilityPhase.h"
 

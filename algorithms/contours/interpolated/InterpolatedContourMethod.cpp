@@ -2,11 +2,11 @@
 // of g = (c - p) · n interpolated linearly over each triangle from its
 // vertices, one segment per face, chained across shared edges.
 #include "camera/Facing.h"
+#include "contours/Methods.h"
 #include "contours/common/BoundaryCurves.h"
 #include "contours/common/ContourChaining.h"
 #include "contours/common/EdgePolylines.h"
 #include "contours/common/FacingPhase.h"
-#include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "contours/common/VertexNormalCache.h"
 #include "mesh/VertexNormals.h"
@@ -54,9 +54,9 @@ void computeVertexFacing(const PhaseContext& ctx, Snapshot& s) {
     s.fields[fields::kVertexNormal] = normalField;
     s.setField(fields::kG,
                {FieldLocation::Vertex, std::move(g), "g = (c - p) · n, > 0 front-facing"});
-    s.setCounter("front vertices", static_cast<double>(front));
-    s.setCounter("back vertices", static_cast<double>(mesh.vertexCount() - front));
-    s.setCounter("vertices with g = 0", static_cast<double>(zero));
+    s.setCounter(counters::kFrontVertices, static_cast<double>(front));
+    s.setCounter(counters::kBackVertices, static_cast<double>(mesh.vertexCount() - front));
+    s.setCounter(counters::kVerticesWithG0, static_cast<double>(zero));
     if (zero > 0)
         s.notes.push_back(std::to_string(zero) + " vertices have g exactly 0 (not in generic "
                                                  "position); they count as back-facing");
@@ -106,8 +106,8 @@ void extractZeroCrossings(const PhaseContext& ctx, Snapshot& s) {
                 "t of the zero crossing of g along the edge's stored half-edge, NaN if none"});
     s.setField(fields::kContourFace, {FieldLocation::Face, std::move(contourFace),
                                       "1 if the face holds an interpolated contour segment"});
-    s.setCounter("crossing edges", static_cast<double>(crossings));
-    s.setCounter("contour segments", static_cast<double>(faces));
+    s.setCounter(counters::kCrossingEdges, static_cast<double>(crossings));
+    s.setCounter(counters::kContourSegments, static_cast<double>(faces));
 }
 
 std::vector<InvariantCheck> checkZeroCrossings(const PhaseContext&, const Snapshot& s) {
@@ -178,7 +178,7 @@ void chainSegmentsAcrossEdges(const PhaseContext& ctx, Snapshot& s) {
             line.segmentElement.push_back(segments[seg].element);
         lines.push_back(std::move(line));
     }
-    publishCurves(ctx, s, std::move(lines));
+    publishCurves(s, std::move(lines), ctx.parameters.getBool("include-boundaries"));
 }
 
 std::vector<InvariantCheck> checkChains(const PhaseContext&, const Snapshot& s) {
@@ -216,7 +216,9 @@ Method makeInterpolatedContourMethod() {
          0,
          0,
          {"area", "angle", "max"}});
-    m.addPhase(makeSurfacePhase(NoneSurfaceNormals::WeightedAverage));
+    m.addPhase(makeSurfacePhase({[](const ParameterSet& p) {
+        return normalWeightingFromName(p.getChoice("normal-weighting"));
+    }}));
     m.addPhase({"facing",
                 "Vertex normals, g = (c - p) · n at every vertex, and each face's facing.",
                 computeVertexFacing, checkVertexFacing});

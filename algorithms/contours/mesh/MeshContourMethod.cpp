@@ -1,10 +1,10 @@
 // Mesh contours (tutorial §3.4, §3.7.1 brute force; convexity from appendix B
 // and C): edges between a front face and a back face of the triangle mesh.
 #include "camera/Facing.h"
+#include "contours/Methods.h"
 #include "contours/common/BoundaryCurves.h"
 #include "contours/common/EdgePolylines.h"
 #include "contours/common/FacingPhase.h"
-#include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "core/Predicates.h"
 #include "pipeline/FieldNames.h"
@@ -51,9 +51,9 @@ void extractContourEdges(const PhaseContext& ctx, Snapshot& s) {
     s.setField(fields::kContourEdge,
                {FieldLocation::Edge, std::move(label),
                 "0 not a contour, 1 convex contour edge, 2 concave contour edge"});
-    s.setCounter("contour edges", static_cast<double>(convex + concave));
-    s.setCounter("convex contour edges", static_cast<double>(convex));
-    s.setCounter("concave contour edges", static_cast<double>(concave));
+    s.setCounter(counters::kContourEdges, static_cast<double>(convex + concave));
+    s.setCounter(counters::kConvexContourEdges, static_cast<double>(convex));
+    s.setCounter(counters::kConcaveContourEdges, static_cast<double>(concave));
     if (ctx.parameters.getBool("include-boundaries")) {
         std::vector<int> boundary(mesh.edgeCount(), 0);
         for (Index e : boundaryEdges(mesh))
@@ -61,7 +61,7 @@ void extractContourEdges(const PhaseContext& ctx, Snapshot& s) {
         s.setField(fields::kBoundaryEdge,
                    {FieldLocation::Edge, std::move(boundary), "1 on a boundary edge"});
     }
-    s.setCounter("boundary edges", mesh.boundaryEdgeCount());
+    s.setCounter(counters::kBoundaryEdges, mesh.boundaryEdgeCount());
 }
 
 std::vector<InvariantCheck> checkContourEdges(const PhaseContext&, const Snapshot& s) {
@@ -92,10 +92,22 @@ std::vector<InvariantCheck> checkContourEdges(const PhaseContext&, const Snapsho
 
 // Chains contour edges through vertices where exactly two meet; a chain
 // stops at bifurcations (more than two contour edges at a vertex, §4.3).
+struct ChainOptions {
+    bool dropConcave = false;       // drop-concave
+    bool includeBoundaries = false; // include-boundaries
+    static ChainOptions read(const ParameterSet& p) {
+        ChainOptions o;
+        o.dropConcave = p.getBool("drop-concave");
+        o.includeBoundaries = p.getBool("include-boundaries");
+        return o;
+    }
+};
+
 void chainContourEdges(const PhaseContext& ctx, Snapshot& s) {
+    const ChainOptions options = ChainOptions::read(ctx.parameters);
     const TriangleMesh& mesh = *s.mesh;
     const std::vector<int>& label = *s.field(fields::kContourEdge)->labels();
-    const bool dropConcave = ctx.parameters.getBool("drop-concave");
+    const bool dropConcave = options.dropConcave;
     std::vector<Index> edges;
     std::vector<int> degree(mesh.vertexCount(), 0);
     for (Index e = 0; e < mesh.edgeCount(); ++e) {
@@ -109,17 +121,17 @@ void chainContourEdges(const PhaseContext& ctx, Snapshot& s) {
     long long bifurcations = 0;
     for (int d : degree)
         bifurcations += d > 2;
-    s.setCounter("bifurcation vertices", static_cast<double>(bifurcations));
+    s.setCounter(counters::kBifurcationVertices, static_cast<double>(bifurcations));
     if (bifurcations > 0)
         s.notes.push_back(std::to_string(bifurcations) +
                           " vertices join more than two contour edges (bifurcations, tutorial "
                           "§4.3): chains stop there");
-    publishCurves(ctx, s, edgePolylines(mesh, edges, CurveType::Contour));
+    publishCurves(s, edgePolylines(mesh, edges, CurveType::Contour), options.includeBoundaries);
 }
 
 std::vector<InvariantCheck> checkChains(const PhaseContext& ctx, const Snapshot& s) {
     const std::vector<int>& label = *s.field(fields::kContourEdge)->labels();
-    const bool dropConcave = ctx.parameters.getBool("drop-concave");
+    const bool dropConcave = ChainOptions::read(ctx.parameters).dropConcave;
     std::vector<int> uses(label.size(), 0);
     for (const Polyline& line : *s.curves)
         if (line.type == CurveType::Contour)
@@ -169,7 +181,7 @@ Method makeMeshContourMethod() {
     m.presets = {defaultPreset()};
     // Each phase's parameters are declared before it (Method::addPhase).
     m.parameters = surfaceParameters();
-    m.addPhase(makeSurfacePhase(NoneSurfaceNormals::Omit));
+    m.addPhase(makeSurfacePhase({}));
     m.addPhase(makeMeshFacingPhase());
     m.parameters.push_back({"include-boundaries",
                             "Include boundaries",

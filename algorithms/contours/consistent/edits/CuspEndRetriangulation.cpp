@@ -1,9 +1,9 @@
 #include "contours/consistent/edits/CuspEndRetriangulation.h"
 
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/edits/RingRetriangulation.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 
 #include <algorithm>

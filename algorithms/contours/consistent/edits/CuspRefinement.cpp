@@ -1,9 +1,9 @@
 // Cusp refinement: not in the paper (CuspRefinement.h).
 #include "contours/consistent/edits/CuspRefinement.h"
 
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/predicates/FoldTest.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/predicates/FoldTest.h"
 
 #include <algorithm>
 #include <map>

@@ -1,6 +1,6 @@
 #include "contours/consistent/edits/LocalEdit.h"
 
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/predicates/FaceClassification.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 
 #include <algorithm>

@@ -9,11 +9,14 @@
 // acceptance rule, not strictly better: the move is for accuracy). It runs
 // after the last optimization so that no move of §6.4 has to work around the
 // new vertices.
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/edits/CuspEndRetriangulation.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
 
 #include <algorithm>
 #include <deque>

@@ -4,11 +4,15 @@
 // face are pushed along their radial curves again (RadialExtension.h), and
 // the vertices of the faces still inconsistent are wiggled along their
 // normals again around what moved.
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/phases/NormalWiggle.h"
+#include "contours/consistent/phases/PhaseChecks.h"
 #include "contours/consistent/phases/RadialExtension.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/MeshAnalysis.h"
 
 namespace contour::consistent {
 

@@ -3,12 +3,16 @@
 // Fig. 18e): once after the normal wiggle and the cusps' final push, and
 // again after contour refinement, whose new C vertices give the discs new
 // outlines.
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/CuspEndRetriangulation.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/phases/NormalWiggle.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/MeshAnalysis.h"
 
 namespace contour::consistent {
 

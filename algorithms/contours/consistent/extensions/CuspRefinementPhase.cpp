@@ -2,10 +2,13 @@
 // detection (§6.2 d) and contour insertion (§6.2 e): around every cusp with
 // cusp-refinement, and in a cusp retry's run (CuspRetryBranch.cpp) first
 // around the cusps its branch data selects.
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/CuspRefinement.h"
 #include "contours/consistent/extensions/CuspRefinementTargets.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
 
 #include <string>
 

@@ -6,10 +6,14 @@
 // detection and contour insertion) and adopts a run only when it has
 // strictly fewer inconsistent faces (ties keep the first run), so no view
 // ends worse and the views without such faces are untouched.
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/extensions/CuspRefinementTargets.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/MeshAnalysis.h"
 
 #include <memory>
 #include <set>

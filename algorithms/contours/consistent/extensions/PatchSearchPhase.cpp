@@ -65,12 +65,17 @@
 // -> on): see the parameter patch-search. After the normal wiggle instead
 // it removes less (with 12-corner patches, bob 73 -> 64 there against
 // 73 -> 48 here), and running it in both places removed nothing more.
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/phases/OptimizationPhaseSupport.h"
-#include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/edits/RingRetriangulation.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
+#include "contours/consistent/phases/ContourInsertion.h"
+#include "contours/consistent/phases/OptimizationFlip.h"
+#include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/RadialEdgeInsertion.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 #include "contours/consistent/predicates/TriangulationCost.h"
 #include "pipeline/FieldNames.h"
@@ -815,17 +820,16 @@ private:
     template <class H>
     std::optional<Preimage> planeRoot(const Preimage& a, double ha, const Preimage& b, const H& h,
                                       double tolerance) {
-        double lo = 0.0, hi = 1.0;
-        for (int it = 0; it < 60; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            const std::optional<Preimage> u = m_.interpolate(a, b, mid);
-            if (!u)
-                break;
-            const double hm = h(*u);
-            if (std::abs(hm) <= tolerance)
-                return u;
-            ((hm < 0.0) == (ha < 0.0) ? lo : hi) = mid;
-        }
+        BisectionOptions search;
+        search.step = BisectionStep::Midpoint;
+        search.sign = BisectionSign::Negative;
+        search.maxIterations = 60;
+        search.tolerance = tolerance;
+        BisectionResult<Preimage> r =
+            bisect([&](double along) { return m_.interpolate(a, b, along); }, h,
+                   {0.0, 1.0, ha, -ha}, search);
+        if (r.outcome == BisectionOutcome::Converged)
+            return std::move(r.last);
         ++stats.cancelledSamples;
         return std::nullopt;
     }
@@ -1012,24 +1016,55 @@ private:
     }
 };
 
+// The phase's parameters, read once per run.
+struct PatchSearchOptions {
+    bool enabled = false; // patch-search
+    int maxSweeps = 0;    // patch-max-sweeps
+    int rows = 0, maxCorners = 0;
+    bool relocate = false, grow = false, radialEnds = false, contourSlide = false,
+         newRadialEnds = false, newRadialCusps = false, cuspTies = false;
+    CuspEditOptions cusps;
+    RadialEdgeOptions radial;
+    ContourRootOptions root;
+    static PatchSearchOptions read(const ParameterSet& p) {
+        PatchSearchOptions o;
+        o.enabled = p.getBool("patch-search");
+        o.maxSweeps = p.getInt("patch-max-sweeps");
+        o.rows = p.getInt("patch-rows");
+        o.maxCorners = p.getInt("patch-max-corners");
+        o.relocate = p.getBool("patch-relocate");
+        o.grow = p.getBool("patch-grow");
+        o.radialEnds = p.getBool("patch-radial-ends");
+        o.contourSlide = p.getBool("patch-contour-slide");
+        o.newRadialEnds = p.getBool("patch-new-radial-ends");
+        o.newRadialCusps = p.getBool("patch-new-radial-cusps");
+        o.cuspTies = p.getBool("patch-new-radial-cusp-ties");
+        o.cusps = CuspEditOptions::read(p);
+        o.radial = RadialEdgeOptions::read(p);
+        o.root = ContourRootOptions::read(p);
+        return o;
+    }
+};
+
 void runPatchSearch(const PhaseContext& ctx, Snapshot& s) {
+    const PatchSearchOptions options = PatchSearchOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     PatchSettings set;
-    set.rows = ctx.parameters.getInt("patch-rows");
-    set.maxCorners = ctx.parameters.getInt("patch-max-corners");
-    set.relocate = ctx.parameters.getBool("patch-relocate");
-    set.grow = ctx.parameters.getBool("patch-grow");
-    set.cuspEdits = ctx.parameters.getBool("optimization-cusp-edits");
-    set.radialEnds = ctx.parameters.getBool("patch-radial-ends");
-    set.radialTolerance = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
-    set.contourSlide = ctx.parameters.getBool("patch-contour-slide");
-    set.newRadialEnds = ctx.parameters.getBool("patch-new-radial-ends");
-    set.newRadialCusps = ctx.parameters.getBool("patch-new-radial-cusps");
-    set.cuspTies = ctx.parameters.getBool("patch-new-radial-cusp-ties");
+    set.rows = options.rows;
+    set.maxCorners = options.maxCorners;
+    set.relocate = options.relocate;
+    set.grow = options.grow;
+    set.cuspEdits = options.cusps.cuspEdits;
+    set.radialEnds = options.radialEnds;
+    set.radialTolerance = options.radial.rootTolerance * sceneScale(m);
+    set.contourSlide = options.contourSlide;
+    set.newRadialEnds = options.newRadialEnds;
+    set.newRadialCusps = options.newRadialCusps;
+    set.cuspTies = options.cuspTies;
     // Half the bound the |g| post-condition checks, as contour insertion.
-    set.rootTolerance = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
-    const bool enabled = ctx.parameters.getBool("patch-search");
-    const int maxSweeps = ctx.parameters.getInt("patch-max-sweeps");
+    set.rootTolerance = 0.5 * options.root.tolerance * sceneScale(m);
+    const bool enabled = options.enabled;
+    const int maxSweeps = options.maxSweeps;
     OptimizationTally tally;
     PatchSearcher searcher(
         m,
@@ -1061,19 +1096,19 @@ void runPatchSearch(const PhaseContext& ctx, Snapshot& s) {
     } else
         tally.before = static_cast<long long>(inconsistentFaces(m).size());
     publish(s, m);
-    publishTally(s, tally, "faces", "patch-max-sweeps");
+    publishTally(s, tally, counters::kFacesTried, counters::kFacesAccepted, "patch-max-sweeps");
     const PatchStats& st = searcher.stats;
-    s.setCounter("patches searched", static_cast<double>(st.patches));
-    s.setCounter("patch samples", static_cast<double>(st.samples));
-    s.setCounter("samples without a chart", static_cast<double>(st.cancelledSamples));
-    s.setCounter("rejected (degenerate CC edge or fold)", static_cast<double>(st.rejected));
-    s.setCounter("vertices inserted", static_cast<double>(st.inserted));
-    s.setCounter("vertices relocated", static_cast<double>(st.relocated));
-    s.setCounter("C vertices slid along the contour", static_cast<double>(st.slid));
-    s.setCounter("new radial edges", static_cast<double>(st.newRadial));
-    s.setCounter("new radial edges at cusps", static_cast<double>(st.newRadialCusps));
-    s.setCounter("faces skipped (nothing changed near them)", static_cast<double>(st.skipped));
-    s.setCounter("moves skipped (the mesh would refuse an edit)",
+    s.setCounter(counters::kPatchesSearched, static_cast<double>(st.patches));
+    s.setCounter(counters::kPatchSamples, static_cast<double>(st.samples));
+    s.setCounter(counters::kSamplesWithoutAChart, static_cast<double>(st.cancelledSamples));
+    s.setCounter(counters::kRejectedDegenerateCCEdgeOrFold, static_cast<double>(st.rejected));
+    s.setCounter(counters::kVerticesInserted, static_cast<double>(st.inserted));
+    s.setCounter(counters::kVerticesRelocated, static_cast<double>(st.relocated));
+    s.setCounter(counters::kCVerticesSlidAlongTheContour, static_cast<double>(st.slid));
+    s.setCounter(counters::kNewRadialEdges, static_cast<double>(st.newRadial));
+    s.setCounter(counters::kNewRadialEdgesAtCusps, static_cast<double>(st.newRadialCusps));
+    s.setCounter(counters::kFacesSkippedNothingChangedNearThem, static_cast<double>(st.skipped));
+    s.setCounter(counters::kMovesSkippedTheMeshWouldRefuseAnEdit,
                  static_cast<double>(st.unplanned));
     if (!enabled)
         s.notes.push_back("patch search is off (patch-search = false): mesh passed through");

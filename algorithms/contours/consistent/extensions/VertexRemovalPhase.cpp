@@ -20,12 +20,13 @@
 // (measured over 26 views: spot 97 -> 89, bob 91 -> 72, bumpy torus 21 -> 14
 // final inconsistent faces, no view raised; placed before the optimization
 // flips it removes more on bob but raises some views of spot).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/phases/OptimizationPhaseSupport.h"
-#include "contours/consistent/edits/RadialTriangles.h"
 #include "contours/consistent/edits/RingRetriangulation.h"
+#include "contours/consistent/extensions/ExtensionPhases.h"
+#include "contours/consistent/phases/OptimizationFlip.h"
+#include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 #include "contours/consistent/predicates/TriangulationCost.h"
 
@@ -229,13 +230,30 @@ private:
     }
 };
 
+// The phase's parameters, read once per run.
+struct VertexRemovalOptions {
+    bool enabled = false; // vertex-removal
+    int maxValence = 0;   // removal-max-valence
+    int maxSweeps = 0;    // removal-max-sweeps
+    CuspEditOptions cusps;
+    static VertexRemovalOptions read(const ParameterSet& p) {
+        VertexRemovalOptions o;
+        o.enabled = p.getBool("vertex-removal");
+        o.maxValence = p.getInt("removal-max-valence");
+        o.maxSweeps = p.getInt("removal-max-sweeps");
+        o.cusps = CuspEditOptions::read(p);
+        return o;
+    }
+};
+
 void runVertexRemoval(const PhaseContext& ctx, Snapshot& s) {
+    const VertexRemovalOptions options = VertexRemovalOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     RemovalSettings set;
-    set.maxValence = ctx.parameters.getInt("removal-max-valence");
-    set.cuspEdits = ctx.parameters.getBool("optimization-cusp-edits");
-    const bool enabled = ctx.parameters.getBool("vertex-removal");
-    const int maxSweeps = ctx.parameters.getInt("removal-max-sweeps");
+    set.maxValence = options.maxValence;
+    set.cuspEdits = options.cusps.cuspEdits;
+    const bool enabled = options.enabled;
+    const int maxSweeps = options.maxSweeps;
     OptimizationTally tally;
     VertexRemover remover(m, set, s.phaseIndex);
     if (enabled)
@@ -244,16 +262,17 @@ void runVertexRemoval(const PhaseContext& ctx, Snapshot& s) {
     else
         tally.before = static_cast<long long>(inconsistentFaces(m).size());
     publish(s, m);
-    publishTally(s, tally, "vertices", "removal-max-sweeps");
-    s.setCounter("vertices removed", static_cast<double>(remover.stats.removed));
-    s.setCounter("rings re-triangulated", static_cast<double>(remover.stats.ringsTried));
-    s.setCounter("rings without an allowed triangulation",
+    publishTally(s, tally, counters::kVerticesTried, counters::kVerticesAccepted,
+                 "removal-max-sweeps");
+    s.setCounter(counters::kVerticesRemoved, static_cast<double>(remover.stats.removed));
+    s.setCounter(counters::kRingsReTriangulated, static_cast<double>(remover.stats.ringsTried));
+    s.setCounter(counters::kRingsWithoutAnAllowedTriangulation,
                  static_cast<double>(remover.stats.noTriangulation));
-    s.setCounter("rings without fewer inconsistent faces",
+    s.setCounter(counters::kRingsWithoutFewerInconsistentFaces,
                  static_cast<double>(remover.stats.noGain));
-    s.setCounter("rejected (degenerate CC edge or fold)",
+    s.setCounter(counters::kRejectedDegenerateCCEdgeOrFold,
                  static_cast<double>(remover.stats.rejected));
-    s.setCounter("removals skipped (the mesh would refuse an edit)",
+    s.setCounter(counters::kRemovalsSkippedTheMeshWouldRefuseAnEdit,
                  static_cast<double>(remover.stats.unplanned));
     if (!enabled)
         s.notes.push_back("vertex removal is off (vertex-removal = false): mesh passed through");

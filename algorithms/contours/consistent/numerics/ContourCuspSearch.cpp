@@ -1,6 +1,6 @@
 #include "contours/consistent/numerics/ContourCuspSearch.h"
 
-#include "contours/consistent/numerics/IllinoisBracket.h"
+#include "contours/consistent/numerics/Bisection.h"
 #include "surface/SurfaceFields.h"
 
 #include <cmath>
@@ -21,38 +21,39 @@ std::optional<ContourPoint> contourPointOnFan(const ConsistentMesh& m, Index o, 
     // (a sign change the initialization's 10 samples missed).
     if (!(flo * fhi < 0.0))
         return std::nullopt;
-    IllinoisBracket r{0.0, 1.0, flo, fhi};
+    // Regula falsi, Illinois variant, falling back to bisection; the answer
+    // is the sample of least |g|.
+    struct Probe {
+        double t;
+        Preimage preimage;
+        SurfacePoint point;
+        double g;
+    };
+    BisectionOptions search;
+    search.step = BisectionStep::FalsePositionOrMidpoint;
+    search.sign = BisectionSign::Positive;
+    search.best = BisectionBest::FromInfinity;
+    search.maxIterations = options.maxRootIterations;
+    search.minWidth = 1e-15;
+    search.tolerance = options.gTolerance;
+    const BisectionResult<Probe> r = bisect(
+        [&](double along) -> std::optional<Probe> {
+            const std::optional<Preimage> p = m.interpolate(vo.preimage, *q, along);
+            if (!p)
+                return std::nullopt;
+            const SurfacePoint sp = m.surface().evaluate(*p);
+            ++stats.evaluations;
+            return Probe{along, *p, sp, orientation(sp, m.camera())};
+        },
+        [](const Probe& x) { return x.g; }, {0.0, 1.0, flo, fhi}, search);
+    if (r.outcome == BisectionOutcome::Failed || !r.best)
+        return std::nullopt;
+    const bool converged = r.outcome == BisectionOutcome::Converged;
     ContourPoint best;
     best.s = s;
-    SurfacePoint bestPoint;
-    double bestG = std::numeric_limits<double>::infinity();
-    bool converged = false;
-    for (int it = 0; it < options.maxRootIterations && r.hi - r.lo > 1e-15; ++it) {
-        // Regula falsi, Illinois variant (the retained end's value is halved
-        // when the same end is kept twice), falling back to bisection.
-        double t = r.falsePosition();
-        if (!(t > r.lo && t < r.hi))
-            t = 0.5 * (r.lo + r.hi);
-        const std::optional<Preimage> p = m.interpolate(vo.preimage, *q, t);
-        if (!p)
-            return std::nullopt;
-        const SurfacePoint sp = m.surface().evaluate(*p);
-        ++stats.evaluations;
-        const double f = orientation(sp, m.camera());
-        if (std::abs(f) < bestG) {
-            bestG = std::abs(f);
-            best.t = t;
-            best.preimage = *p;
-            bestPoint = sp;
-        }
-        if (bestG <= options.gTolerance) {
-            converged = true;
-            break;
-        }
-        r.keep(t, f, (f > 0.0) == (r.flo > 0.0));
-    }
-    if (!std::isfinite(bestG))
-        return std::nullopt;
+    best.t = r.best->t;
+    best.preimage = r.best->preimage;
+    const SurfacePoint& bestPoint = r.best->point;
     stats.unconvergedRoots += !converged;
     best.converged = converged;
     best.position = bestPoint.position;
@@ -158,18 +159,19 @@ std::vector<ContourPoint> contourCuspsInFace(const ConsistentMesh& m, Index o, I
             // One sign change of κr along the contour between the two
             // samples: bisection on s (the sign at the midpoint decides).
             ContourPoint lo = *previous->point, hi = *x.point;
-            bool broken = false;
-            while (hi.s - lo.s > options.sTolerance) {
-                const std::optional<ContourPoint> mid =
-                    contourPointOnFan(m, o, a, b, 0.5 * (lo.s + hi.s), options, stats);
-                if (!mid) {
-                    broken = true; // the arc has a gap: not one curve
-                    break;
-                }
-                if (!std::isfinite(mid->radialCurvature) || mid->radialCurvature == 0.0)
-                    break;
-                ((mid->radialCurvature > 0.0) == (lo.radialCurvature > 0.0) ? lo : hi) = *mid;
-            }
+            BisectionOptions search;
+            search.step = BisectionStep::Midpoint;
+            search.sign = BisectionSign::Positive;
+            search.minWidth = options.sTolerance;
+            // A κr that is 0 or not finite ends the search (tolerance 0).
+            search.tolerance = 0.0;
+            const BisectionResult<ContourPoint> r =
+                bisect([&](double sm) { return contourPointOnFan(m, o, a, b, sm, options, stats); },
+                       [](const ContourPoint& c) {
+                           return std::isfinite(c.radialCurvature) ? c.radialCurvature : 0.0;
+                       },
+                       {lo.s, hi.s, lo.radialCurvature, hi.radialCurvature}, search, &lo, &hi);
+            const bool broken = r.outcome == BisectionOutcome::Failed; // a gap: not one curve
             // κr that jumps across 0 instead of passing through it: both
             // ends of the final bracket keep a large |κr|. Near extraordinary
             // vertices the surface's second derivatives (and, slightly, its

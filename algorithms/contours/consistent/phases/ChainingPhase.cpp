@@ -1,8 +1,8 @@
 // The consistent mesh's contour generator (Bénard 2014 §8.1, notes §3.1):
 // the edges between an F-VBO face and a B-VBO face, chained into polylines.
 #include "contours/common/EdgePolylines.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/PhaseChecks.h"
 #include "pipeline/FieldNames.h"
 
 namespace contour::consistent {
@@ -32,10 +32,11 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
     s.setField(fields::kContourEdge,
                {FieldLocation::Edge, std::move(label),
                 "1 on the contour generator (an F-VBO face next to a B-VBO face)"});
-    s.setCounter("contour generator edges", static_cast<double>(generator.size()));
-    s.setCounter("mesh contour edges", static_cast<double>(meshContourEdges));
-    publishCurves(ctx, s, edgePolylines(mesh, generator, CurveType::Contour));
-    const double inconsistent = s.counter("inconsistent faces", 0.0);
+    s.setCounter(counters::kContourGeneratorEdges, static_cast<double>(generator.size()));
+    s.setCounter(counters::kMeshContourEdges, static_cast<double>(meshContourEdges));
+    publishCurves(s, edgePolylines(mesh, generator, CurveType::Contour),
+                  ctx.parameters.getBool("include-boundaries"));
+    const double inconsistent = s.counter(counters::kInconsistentFaces, 0.0);
     if (inconsistent > 0.0)
         s.notes.push_back(
             std::to_string(static_cast<long long>(inconsistent)) + " of " +

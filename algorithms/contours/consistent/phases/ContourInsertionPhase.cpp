@@ -1,6 +1,10 @@
 // Contour vertex insertion (Bénard 2014 §6.2 e-f, Fig. 15d-f; notes §2.2).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/ContourInsertion.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <cmath>
@@ -32,7 +36,23 @@ bool snapStaysInEdgeCharts(const ConsistentMesh& m, Index w, const Preimage& roo
     return true;
 }
 
-// §6.2 (e), notes §2.2: bisection of g along every FB edge, snap to a
+// The phase's parameters, read once per run.
+struct ContourInsertionOptions {
+    ContourRootOptions root;
+    double snapFraction = 0.0; // snap-fraction
+    bool snapAcrossCorners = true;
+    static ContourInsertionOptions read(const ParameterSet& p) {
+        ContourInsertionOptions o;
+        o.root = ContourRootOptions::read(p);
+        o.snapFraction = p.getDouble("snap-fraction");
+        // Without corner charts every shiftable snap stays in edge charts.
+        o.snapAcrossCorners =
+            !ChartOptions::read(p).vertexRings || p.getBool("snap-across-corners");
+        return o;
+    }
+};
+
+// §6.2 (e): bisection of g along every FB edge, snap to a
 // shiftable endpoint within `snap-fraction` of the edge length, otherwise
 // insert a C vertex splitting both faces (Fig. 16c); repeat until no FB edge
 // remains. §6.2 (f), Fig. 18c-d: the FB edges tagged by cusp detection are
@@ -40,18 +60,17 @@ bool snapStaysInEdgeCharts(const ConsistentMesh& m, Index w, const Preimage& roo
 // valence 4; endpoints of cusp edges are never snapped either (the cusp
 // edge would lose its sign change).
 void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
+    const ContourInsertionOptions options = ContourInsertionOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     // The post-condition checks |g| <= root-tolerance times the diagonal of
     // the mesh *after* the phase, which snapping can shrink (bob_controlmesh
     // view 10: 2.5473 -> 2.5451, and a root at 1.0004 times the checked
     // bound): bisect to half of it.
-    const double tol = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
-    const int maxIterations = ctx.parameters.getInt("root-max-iterations");
-    const double snap = ctx.parameters.getDouble("snap-fraction");
-    // Without corner charts every shiftable snap stays in edge charts.
-    const bool snapAcrossCorners = !ctx.parameters.getBool("chart-vertex-rings") ||
-                                   ctx.parameters.getBool("snap-across-corners");
+    const double tol = 0.5 * options.root.tolerance * sceneScale(m);
+    const int maxIterations = options.root.maxIterations;
+    const double snap = options.snapFraction;
+    const bool snapAcrossCorners = options.snapAcrossCorners;
     long long inserted = 0, snapped = 0, cancelled = 0, unconverged = 0, cusps = 0;
     for (const bool cuspStage : {false, true})
         for (bool progress = true; progress;) {
@@ -70,29 +89,26 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 const Index x = m.vertex(e0).label == VertexLabel::Front ? e0 : e1;
                 const Index y = x == e0 ? e1 : e0;
                 const Preimage px = m.vertex(x).preimage, py = m.vertex(y).preimage;
-                double lo = 0.0, hi = 1.0;
-                std::optional<MeshVertex> root;
-                bool failed = false, converged = false;
                 const ConsistentMesh::Segment xy = m.segment(px, py);
-                for (int it = 0; it < maxIterations; ++it) {
-                    const double mid = 0.5 * (lo + hi);
-                    const std::optional<Preimage> p = xy.at(mid);
-                    if (!p) {
-                        failed = true;
-                        break;
-                    }
-                    // g decides; the radial curvature is evaluated for the
-                    // root kept, below.
-                    MeshVertex v = m.evaluateWithoutCurvature(*p);
-                    if (!root || std::abs(v.g) < std::abs(root->g))
-                        root = v;
-                    if (std::abs(v.g) <= tol) {
-                        converged = true;
-                        break;
-                    }
-                    (v.g > 0.0 ? lo : hi) = mid;
-                }
-                if (failed || !root) {
+                // g decides; the radial curvature is evaluated for the root
+                // kept, below. g > 0 at x (lo), < 0 at y (hi).
+                BisectionOptions search;
+                search.step = BisectionStep::Midpoint;
+                search.sign = BisectionSign::Positive;
+                search.best = BisectionBest::FromFirst;
+                search.maxIterations = maxIterations;
+                search.tolerance = tol;
+                const BisectionResult<MeshVertex> r = bisect(
+                    [&](double along) -> std::optional<MeshVertex> {
+                        const std::optional<Preimage> p = xy.at(along);
+                        if (!p)
+                            return std::nullopt;
+                        return m.evaluateWithoutCurvature(*p);
+                    },
+                    [](const MeshVertex& v) { return v.g; }, {0.0, 1.0, 1.0, -1.0}, search);
+                std::optional<MeshVertex> root = r.best;
+                const bool converged = r.outcome == BisectionOutcome::Converged;
+                if (r.outcome == BisectionOutcome::Failed || !root) {
                     ++cancelled; // appendix B: no common chart, insertion cancelled
                     continue;
                 }
@@ -126,11 +142,11 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
             }
         }
     publish(s, m);
-    s.setCounter("inserted contour vertices", static_cast<double>(inserted));
-    s.setCounter("inserted cusp vertices", static_cast<double>(cusps));
-    s.setCounter("snapped vertices", static_cast<double>(snapped));
-    s.setCounter("cancelled insertions", static_cast<double>(cancelled));
-    s.setCounter("unconverged roots", static_cast<double>(unconverged));
+    s.setCounter(counters::kInsertedContourVertices, static_cast<double>(inserted));
+    s.setCounter(counters::kInsertedCuspVertices, static_cast<double>(cusps));
+    s.setCounter(counters::kSnappedVertices, static_cast<double>(snapped));
+    s.setCounter(counters::kCancelledInsertions, static_cast<double>(cancelled));
+    s.setCounter(counters::kUnconvergedRoots, static_cast<double>(unconverged));
     if (unconverged > 0)
         s.notes.push_back(std::to_string(unconverged) +
                           " roots did not reach |g| <= root-tolerance within root-max-iterations "
@@ -149,6 +165,13 @@ std::vector<InvariantCheck> checkContourInsertion(const PhaseContext& ctx, const
 }
 
 } // namespace
+
+ContourRootOptions ContourRootOptions::read(const ParameterSet& p) {
+    ContourRootOptions o;
+    o.tolerance = p.getDouble("root-tolerance");
+    o.maxIterations = p.getInt("root-max-iterations");
+    return o;
+}
 
 void addContourInsertionPhase(Method& m) {
     m.parameters.push_back(

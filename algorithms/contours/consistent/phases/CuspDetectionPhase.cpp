@@ -1,9 +1,14 @@
 // Cusp detection (Bénard 2014 §6.2 d, Fig. 15d, 16b, 18a-b; notes §1.6, §2.2).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
-#include "contours/consistent/predicates/FoldTest.h"
 #include "contours/consistent/numerics/JointRootSearch.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/ContourInsertion.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/FoldTest.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <cmath>
@@ -86,18 +91,20 @@ bool insertionRootConverges(const ConsistentMesh& m, Index o, Index a, Index b, 
     const MeshVertex& vo = m.vertex(o);
     const bool front = vo.label == VertexLabel::Front;
     const Preimage px = front ? vo.preimage : *q, py = front ? *q : vo.preimage;
-    double lo = 0.0, hi = 1.0;
-    for (int it = 0; it < roots.maxRootIterations; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        const std::optional<Preimage> p = m.interpolate(px, py, mid);
-        if (!p)
-            return false;
-        const double g = m.evaluateWithoutCurvature(*p).g;
-        if (std::abs(g) <= roots.gTolerance)
-            return true;
-        (g > 0.0 ? lo : hi) = mid;
-    }
-    return false;
+    BisectionOptions search;
+    search.step = BisectionStep::Midpoint;
+    search.sign = BisectionSign::Positive; // g > 0 at px (lo)
+    search.maxIterations = roots.maxRootIterations;
+    search.tolerance = roots.gTolerance;
+    return bisect(
+               [&](double along) -> std::optional<double> {
+                   const std::optional<Preimage> p = m.interpolate(px, py, along);
+                   if (!p)
+                       return std::nullopt;
+                   return m.evaluateWithoutCurvature(*p).g;
+               },
+               [](double g) { return g; }, {0.0, 1.0, 1.0, -1.0}, search)
+               .outcome == BisectionOutcome::Converged;
 }
 
 struct Counts {
@@ -399,19 +406,40 @@ long long separateCuspEdges(ConsistentMesh& m, int phase) {
     return splits;
 }
 
+// The phase's parameters, read once per run.
+struct CuspDetectionOptions {
+    double areaThreshold = 0.0; // cusp-area-threshold
+    double shiftFraction = 0.0; // cusp-shift-fraction
+    int subdivision = 0;        // cusp-search-subdivision
+    int contourSamples = 0;     // cusp-contour-samples
+    // Contour insertion's root search, which the cusp's edge must pass.
+    ContourRootOptions roots;
+    static CuspDetectionOptions read(const ParameterSet& p) {
+        CuspDetectionOptions o;
+        o.areaThreshold = p.getDouble("cusp-area-threshold");
+        o.shiftFraction = p.getDouble("cusp-shift-fraction");
+        o.subdivision = p.getInt("cusp-search-subdivision");
+        o.contourSamples = p.getInt("cusp-contour-samples");
+        o.roots = ContourRootOptions::read(p);
+        return o;
+    }
+};
+
 void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
+    const CuspDetectionOptions parameters = CuspDetectionOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     JointRootOptions options;
-    options.minArea = static_cast<long double>(ctx.parameters.getDouble("cusp-area-threshold"));
+    options.minArea = static_cast<long double>(parameters.areaThreshold);
     options.minEdge = kMinEdge;
     options.maxEvaluations = kMaxEvaluationsPerFace;
-    const double shiftFraction = ctx.parameters.getDouble("cusp-shift-fraction");
-    const int subdivision = ctx.parameters.getInt("cusp-search-subdivision");
+    const double shiftFraction = parameters.shiftFraction;
+    const int subdivision = parameters.subdivision;
     ContourCuspOptions contour;
-    contour.samples = ctx.parameters.getInt("cusp-contour-samples");
-    contour.gTolerance = 0.5 * ctx.parameters.getDouble("root-tolerance") * sceneScale(m);
-    contour.maxRootIterations = ctx.parameters.getInt("root-max-iterations");
+    contour.samples = parameters.contourSamples;
+    const ContourRootOptions& roots = parameters.roots;
+    contour.gTolerance = 0.5 * roots.tolerance * sceneScale(m);
+    contour.maxRootIterations = roots.maxIterations;
     const double same = kSameCusp * sceneScale(m);
     Counts n;
     n.contourSearch = contour.samples > 0;
@@ -442,7 +470,7 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
     }
     const long long separations = separateCuspEdges(m, phase);
     publish(s, m);
-    s.setCounter("cusp separations", static_cast<double>(separations));
+    s.setCounter(counters::kCuspSeparations, static_cast<double>(separations));
     if (separations < 0)
         s.notes.push_back("two cusp edges share a face and could not be separated (no common "
                           "chart or a fold, appendix B): a cusp vertex will not have valence 4");
@@ -451,13 +479,13 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
         skipped += count;
         s.notes.push_back(std::to_string(count) + " cusps skipped (no cusp edge): " + why);
     }
-    s.setCounter("cusps found", static_cast<double>(n.found));
-    s.setCounter("cusp splits", static_cast<double>(n.splits));
-    s.setCounter("cusp shifts", static_cast<double>(n.shifts));
-    s.setCounter("cusps on an edge", static_cast<double>(n.onEdge));
-    s.setCounter("cusps moved off a jump of g", static_cast<double>(n.moved));
-    s.setCounter("cusps skipped", static_cast<double>(skipped + deferred));
-    s.setCounter("cusp search evaluations", static_cast<double>(n.evaluations));
+    s.setCounter(counters::kCuspsFound, static_cast<double>(n.found));
+    s.setCounter(counters::kCuspSplits, static_cast<double>(n.splits));
+    s.setCounter(counters::kCuspShifts, static_cast<double>(n.shifts));
+    s.setCounter(counters::kCuspsOnAnEdge, static_cast<double>(n.onEdge));
+    s.setCounter(counters::kCuspsMovedOffAJumpOfG, static_cast<double>(n.moved));
+    s.setCounter(counters::kCuspsSkipped, static_cast<double>(skipped + deferred));
+    s.setCounter(counters::kCuspSearchEvaluations, static_cast<double>(n.evaluations));
     if (deferred > 0)
         s.notes.push_back(std::to_string(deferred) +
                           " cusps skipped: their face was still being "
@@ -477,8 +505,8 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
                           " cusp-search points had no common chart (appendix B) and were "
                           "treated as unknown");
     if (n.contourSearch) {
-        s.setCounter("cusp sign changes across a gap", static_cast<double>(n.brokenArcs));
-        s.setCounter("cusp sign changes by a jump", static_cast<double>(n.jumps));
+        s.setCounter(counters::kCuspSignChangesAcrossAGap, static_cast<double>(n.brokenArcs));
+        s.setCounter(counters::kCuspSignChangesByAJump, static_cast<double>(n.jumps));
     }
     // The contour search's notes (ContourCuspSearch.h), when their count is > 0.
     const auto note = [&s](long long count, const char* what) {

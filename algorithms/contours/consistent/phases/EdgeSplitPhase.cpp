@@ -1,10 +1,10 @@
 // Edge splitting of the optimization phase (Bénard 2014 §6.4 "Edge
 // Splitting"; notes §2.4.4).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/OptimizationFlip.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
 
 namespace contour::consistent {
 
@@ -133,31 +133,48 @@ bool splitBest(ConsistentMesh& m, Index f, const SplitSettings& set, int phase, 
     return true;
 }
 
+// The phase's parameters, read once per run.
+struct EdgeSplitOptions {
+    int samples = 0;       // split-samples
+    int wiggleSamples = 0; // split-wiggle-samples
+    int maxSweeps = 0;     // split-max-sweeps
+    CuspEditOptions cusps;
+    static EdgeSplitOptions read(const ParameterSet& p) {
+        EdgeSplitOptions o;
+        o.samples = p.getInt("split-samples");
+        o.wiggleSamples = p.getInt("split-wiggle-samples");
+        o.maxSweeps = p.getInt("split-max-sweeps");
+        o.cusps = CuspEditOptions::read(p);
+        return o;
+    }
+};
+
 void runEdgeSplitting(const PhaseContext& ctx, Snapshot& s) {
+    const EdgeSplitOptions options = EdgeSplitOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     SplitSettings set;
-    set.samples = ctx.parameters.getInt("split-samples");
+    set.samples = options.samples;
     // The smallest regular lattice (as the parameter wiggle's) with at
     // least split-wiggle-samples interior points per face: (n-1)(n-2)/2.
-    if (const int wanted = ctx.parameters.getInt("split-wiggle-samples"); wanted > 0) {
+    if (const int wanted = options.wiggleSamples; wanted > 0) {
         set.wiggleRows = 3;
         while ((set.wiggleRows - 1) * (set.wiggleRows - 2) / 2 < wanted)
             ++set.wiggleRows;
     }
-    set.cuspEdits = ctx.parameters.getBool("optimization-cusp-edits");
-    const int maxSweeps = ctx.parameters.getInt("split-max-sweeps");
+    set.cuspEdits = options.cusps.cuspEdits;
+    const int maxSweeps = options.maxSweeps;
     OptimizationTally tally;
     SplitStats st;
     sweepInconsistent(ctx, m, maxSweeps, false, tally,
                       [&](Index f) { return splitBest(m, f, set, phase, st); });
     publish(s, m);
-    publishTally(s, tally, "faces", "split-max-sweeps");
-    s.setCounter("splits", static_cast<double>(tally.accepted));
-    s.setCounter("samples rejected (fold, VBO or degenerate edge)",
+    publishTally(s, tally, counters::kFacesTried, counters::kFacesAccepted, "split-max-sweeps");
+    s.setCounter(counters::kSplits, static_cast<double>(tally.accepted));
+    s.setCounter(counters::kSamplesRejectedFoldVBOOrDegenerateEdge,
                  static_cast<double>(st.rejected));
-    s.setCounter("samples without a chart", static_cast<double>(st.cancelledSamples));
-    s.setCounter("splits with the new vertex wiggled", static_cast<double>(st.wiggled));
+    s.setCounter(counters::kSamplesWithoutAChart, static_cast<double>(st.cancelledSamples));
+    s.setCounter(counters::kSplitsWithTheNewVertexWiggled, static_cast<double>(st.wiggled));
 }
 
 std::vector<InvariantCheck> checkEdgeSplitting(const PhaseContext& ctx, const Snapshot& s) {

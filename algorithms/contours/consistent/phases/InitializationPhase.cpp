@@ -1,6 +1,7 @@
 // Initialization (Bénard 2014 §6.1, Fig. 15a-c; notes §2.1).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "surface/SurfaceTessellation.h"
 
 #include <algorithm>
@@ -11,14 +12,31 @@ namespace contour::consistent {
 
 namespace {
 
-// §6.1 (Fig. 15a-c, notes §2.1): the domain (for Catmull-Clark the cage
+// The phase's parameters, read once per run.
+struct InitializationOptions {
+    ChartOptions charts;
+    int crossingSamples = 0;   // crossing-samples
+    int crossingRounds = 0;    // crossing-search-rounds
+    bool deepestFirst = false; // crossing-split-deepest
+    static InitializationOptions read(const ParameterSet& p) {
+        InitializationOptions o;
+        o.charts = ChartOptions::read(p);
+        o.crossingSamples = p.getInt("crossing-samples");
+        o.crossingRounds = p.getInt("crossing-search-rounds");
+        o.deepestFirst = p.getBool("crossing-split-deepest");
+        return o;
+    }
+};
+
+// §6.1 (Fig. 15a-c): the domain (for Catmull-Clark the cage
 // subdivided once, all quads) tessellated at level 1, each quad split into
 // two triangles, vertices at their limit positions and labelled by sign(g);
 // then the sign-crossing search on FF and BB edges.
 void runInitialization(const PhaseContext& ctx, Snapshot& s) {
+    const InitializationOptions options = InitializationOptions::read(ctx.parameters);
     const std::shared_ptr<const SmoothSurface> surface = surfaceFor(ctx, s);
-    ConsistentMesh m(surface, ctx.camera, ctx.parameters.getDouble("chart-tolerance"));
-    m.setVertexRingCharts(ctx.parameters.getBool("chart-vertex-rings"));
+    ConsistentMesh m(surface, ctx.camera, options.charts.tolerance);
+    m.setVertexRingCharts(options.charts.vertexRings);
     const int phase = s.phaseIndex;
     // Step 1-3: subdivide once (the Catmull-Clark domain already is), split
     // quads, move to the limit (SurfaceTessellation at level 1).
@@ -36,15 +54,15 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
         m.addVertex(v);
     for (Index f = 0; f < t.mesh->faceCount(); ++f)
         m.addFace(t.mesh->triangle(f), phase);
-    s.setCounter("initial faces", m.faceCount());
+    s.setCounter(counters::kInitialFaces, m.faceCount());
     ctx.checkCancelled();
     // Step 4: sign-crossing detection with `crossing-samples` samples of
     // R_S per FF or BB edge, along the interpolated preimage (appendix B);
     // the edge is split at the first sample whose label differs (which one
     // to use is unspecified in the paper), into two FB edges (Fig. 16a).
-    const int samples = ctx.parameters.getInt("crossing-samples");
-    const int rounds = ctx.parameters.getInt("crossing-search-rounds");
-    const bool deepestFirst = ctx.parameters.getBool("crossing-split-deepest");
+    const int samples = options.crossingSamples;
+    const int rounds = options.crossingRounds;
+    const bool deepestFirst = options.deepestFirst;
     long long splits = 0, cancelled = 0, laterSplits = 0;
     std::vector<double> tk(static_cast<size_t>(samples));
     for (int k = 1; k <= samples; ++k)
@@ -138,13 +156,13 @@ void runInitialization(const PhaseContext& ctx, Snapshot& s) {
         created = searchAndSplit(edgesAt(created), tNear, true, laterSplits);
     const size_t unsearched = edgesAt(created).size();
     publish(s, m);
-    s.setCounter("sign-crossing splits", static_cast<double>(splits));
-    s.setCounter("sign-crossing splits on new edges", static_cast<double>(laterSplits));
+    s.setCounter(counters::kSignCrossingSplits, static_cast<double>(splits));
+    s.setCounter(counters::kSignCrossingSplitsOnNewEdges, static_cast<double>(laterSplits));
     if (unsearched > 0)
         s.notes.push_back(std::to_string(unsearched) +
                           " FF or BB edges made by the last round's sign-crossing splits were not "
                           "searched (crossing-search-rounds)");
-    s.setCounter("cancelled interpolations", static_cast<double>(cancelled));
+    s.setCounter(counters::kCancelledInterpolations, static_cast<double>(cancelled));
     if (cancelled > 0)
         s.notes.push_back(std::to_string(cancelled) +
                           " edges were not searched for sign crossings: their endpoints' "

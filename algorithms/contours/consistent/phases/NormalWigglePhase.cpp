@@ -1,10 +1,14 @@
 // Vertex wiggling in the normal direction (Bénard 2014 §6.4, final step;
 // notes §2.4.5): vertices may leave the limit surface.
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/edits/CuspEndRetriangulation.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/NormalWiggle.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/RadialExtension.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
 
 #include <algorithm>
 #include <array>

@@ -1,10 +1,11 @@
 // Edge flipping of the optimization phase (Bénard 2014 §6.4 "Edge
 // Flipping"; notes §2.4.2).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/OptimizationFlip.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 
 #include <initializer_list>
 
@@ -177,26 +178,44 @@ bool flipPairBest(ConsistentMesh& m, Index f, double minQuality, bool cuspEdits,
     return true;
 }
 
+// The phase's parameters, read once per run.
+struct OptimizationFlipOptions {
+    double minQuality = 0.0; // flip-min-quality
+    int maxSweeps = 0;       // flip-max-sweeps
+    bool pairs = false;      // optimization-flip-pairs
+    CuspEditOptions cusps;
+    static OptimizationFlipOptions read(const ParameterSet& p) {
+        OptimizationFlipOptions o;
+        o.minQuality = p.getDouble("flip-min-quality");
+        o.maxSweeps = p.getInt("flip-max-sweeps");
+        o.pairs = p.getBool("optimization-flip-pairs");
+        o.cusps = CuspEditOptions::read(p);
+        return o;
+    }
+};
+
 void runOptimizationFlips(const PhaseContext& ctx, Snapshot& s) {
+    const OptimizationFlipOptions options = OptimizationFlipOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
-    const double minQuality = ctx.parameters.getDouble("flip-min-quality");
-    const int maxSweeps = ctx.parameters.getInt("flip-max-sweeps");
-    const bool cuspEdits = ctx.parameters.getBool("optimization-cusp-edits");
+    const double minQuality = options.minQuality;
+    const int maxSweeps = options.maxSweeps;
+    const bool cuspEdits = options.cusps.cuspEdits;
     OptimizationTally tally;
     FlipStats st;
-    const bool pairs = ctx.parameters.getBool("optimization-flip-pairs");
+    const bool pairs = options.pairs;
     sweepInconsistent(ctx, m, maxSweeps, false, tally, [&](Index f) {
         return flipBest(m, f, minQuality, cuspEdits, phase, st) ||
                (pairs && flipPairBest(m, f, minQuality, cuspEdits, phase, st));
     });
     publish(s, m);
-    publishTally(s, tally, "faces", "flip-max-sweeps");
-    s.setCounter("flips", static_cast<double>(tally.accepted));
-    s.setCounter("flips rejected (tiny triangle)", static_cast<double>(st.rejectedTiny));
-    s.setCounter("flips rejected (fold)", static_cast<double>(st.rejectedFold));
-    s.setCounter("flips rejected (VBO or degenerate edge)", static_cast<double>(st.rejectedLabels));
-    s.setCounter("two-flip sequences", static_cast<double>(st.pairs));
+    publishTally(s, tally, counters::kFacesTried, counters::kFacesAccepted, "flip-max-sweeps");
+    s.setCounter(counters::kFlips, static_cast<double>(tally.accepted));
+    s.setCounter(counters::kFlipsRejectedTinyTriangle, static_cast<double>(st.rejectedTiny));
+    s.setCounter(counters::kFlipsRejectedFold, static_cast<double>(st.rejectedFold));
+    s.setCounter(counters::kFlipsRejectedVBOOrDegenerateEdge,
+                 static_cast<double>(st.rejectedLabels));
+    s.setCounter(counters::kTwoFlipSequences, static_cast<double>(st.pairs));
 }
 
 std::vector<InvariantCheck> checkOptimizationFlips(const PhaseContext& ctx, const Snapshot& s) {
@@ -204,6 +223,12 @@ std::vector<InvariantCheck> checkOptimizationFlips(const PhaseContext& ctx, cons
 }
 
 } // namespace
+
+CuspEditOptions CuspEditOptions::read(const ParameterSet& p) {
+    CuspEditOptions o;
+    o.cuspEdits = p.getBool("optimization-cusp-edits");
+    return o;
+}
 
 void addOptimizationFlipPhase(Method& m) {
     m.parameters.push_back(

@@ -1,8 +1,10 @@
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 
 namespace contour::consistent {
 
@@ -10,12 +12,23 @@ bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
     return w != kInvalidIndex && m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
 }
 
+void publishTally(Snapshot& s, const OptimizationTally& t, const CounterName& tried,
+                  const CounterName& accepted, const std::string& sweepParameter) {
+    s.setCounter(counters::kInconsistentFacesBefore, static_cast<double>(t.before));
+    s.setCounter(tried, static_cast<double>(t.tried));
+    s.setCounter(accepted, static_cast<double>(t.accepted));
+    s.setCounter(counters::kSweeps, t.sweeps);
+    if (t.sweepLimitHit)
+        s.notes.push_back("stopped by " + sweepParameter + " (" + std::to_string(t.sweeps) +
+                          " sweeps) while moves still improved consistency");
+}
+
 void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
                   const std::string& sweepParameter) {
-    s.setCounter("inconsistent faces before", static_cast<double>(t.before));
+    s.setCounter(counters::kInconsistentFacesBefore, static_cast<double>(t.before));
     s.setCounter(what + " tried", static_cast<double>(t.tried));
     s.setCounter(what + " accepted", static_cast<double>(t.accepted));
-    s.setCounter("sweeps", t.sweeps);
+    s.setCounter(counters::kSweeps, t.sweeps);
     if (t.sweepLimitHit)
         s.notes.push_back("stopped by " + sweepParameter + " (" + std::to_string(t.sweeps) +
                           " sweeps) while moves still improved consistency");
@@ -28,7 +41,7 @@ std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Sn
     if (radialOnSurface && ctx.parameters.has("radial-root-tolerance"))
         out.push_back(radialEdgeCheck(ctx, m));
     InvariantCheck monotone = check("the phase did not increase the inconsistent faces");
-    const double before = s.counter("inconsistent faces before", -1.0);
+    const double before = s.counter(counters::kInconsistentFacesBefore, -1.0);
     const long long after = static_cast<long long>(inconsistentFaces(m).size());
     if (before >= 0.0 && static_cast<double>(after) > before)
         violate(monotone, std::to_string(after) + " inconsistent faces after, " +

@@ -19,9 +19,12 @@ struct OptimizationTally {
     bool sweepLimitHit = false; // the last sweep still improved
 };
 
-// Counters "inconsistent faces before", "<what> tried", "<what> accepted",
-// "sweeps", and a note when the sweep limit stopped the phase. Call after
-// publish() (which writes "inconsistent faces", the count after).
+// Counters "inconsistent faces before", `tried`, `accepted`, "sweeps", and
+// a note when the sweep limit stopped the phase. Call after publish()
+// (which writes "inconsistent faces", the count after).
+void publishTally(Snapshot& s, const OptimizationTally& t, const CounterName& tried,
+                  const CounterName& accepted, const std::string& sweepParameter);
+// The same with the counters "<what> tried" and "<what> accepted" by label.
 void publishTally(Snapshot& s, const OptimizationTally& t, const std::string& what,
                   const std::string& sweepParameter);
 
@@ -36,7 +39,7 @@ void sweepInconsistent(const PhaseContext& ctx, ConsistentMesh& m, int maxSweeps
                        const std::function<bool(Index)>& tryMove);
 
 // A cusp keeps the valence 4 of Fig. 18d until radial edges are added
-// around it (the post-condition of ConsistentPhaseSupport); with
+// around it (contourInsertionChecks in PhaseChecks.h); with
 // `cuspEdits` off (optimization-cusp-edits), any cusp keeps its valence.
 // False for kInvalidIndex.
 bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits);

@@ -1,10 +1,12 @@
 // Vertex wiggling in parameter space (Bénard 2014 §6.4; notes §2.4.3).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/numerics/IllinoisBracket.h"
 #include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/phases/RadialEdgeInsertion.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <algorithm>
@@ -85,20 +87,24 @@ struct WiggleStats {
 std::optional<MeshVertex> radialRoot(const ConsistentMesh& m, const MeshVertex& p,
                                      const Preimage& a, double ha, const Preimage& b, double hb,
                                      double tolerance, int maxIterations) {
-    IllinoisBracket r{0.0, 1.0, ha, hb};
-    for (int it = 0; it < maxIterations; ++it) {
-        const double t = r.falsePosition();
-        const std::optional<Preimage> u = m.interpolate(a, b, t);
-        if (!u)
-            return std::nullopt;
-        // The radial curvature of the chosen sample is evaluated by wiggle().
-        MeshVertex x = m.evaluateWithoutCurvature(*u);
-        const double h = radialPlaneDistance(m.camera(), p, x.position);
-        if (std::abs(h) <= tolerance)
-            return x;
-        r.keep(t, h, (h < 0.0) == (r.flo < 0.0));
-    }
-    return std::nullopt;
+    BisectionOptions search;
+    search.step = BisectionStep::FalsePosition;
+    search.sign = BisectionSign::Negative;
+    search.maxIterations = maxIterations;
+    search.tolerance = tolerance;
+    BisectionResult<MeshVertex> r = bisect(
+        [&](double along) -> std::optional<MeshVertex> {
+            const std::optional<Preimage> u = m.interpolate(a, b, along);
+            if (!u)
+                return std::nullopt;
+            // The radial curvature of the chosen sample is evaluated by wiggle().
+            return m.evaluateWithoutCurvature(*u);
+        },
+        [&](const MeshVertex& x) { return radialPlaneDistance(m.camera(), p, x.position); },
+        {0.0, 1.0, ha, hb}, search);
+    if (r.outcome != BisectionOutcome::Converged)
+        return std::nullopt;
+    return std::move(r.last);
 }
 
 struct WiggleSettings {
@@ -337,15 +343,32 @@ bool wiggle(ConsistentMesh& m, Index v, const WiggleSettings& set, int phase, Wi
     return true;
 }
 
+// The phase's parameters, read once per run.
+struct ParameterWiggleOptions {
+    int samples = 0;             // wiggle-samples
+    bool freeRadialEnds = false; // wiggle-radial-ends
+    int maxSweeps = 0;           // wiggle-max-sweeps
+    RadialEdgeOptions radial;
+    static ParameterWiggleOptions read(const ParameterSet& p) {
+        ParameterWiggleOptions o;
+        o.samples = p.getInt("wiggle-samples");
+        o.freeRadialEnds = p.getBool("wiggle-radial-ends");
+        o.maxSweeps = p.getInt("wiggle-max-sweeps");
+        o.radial = RadialEdgeOptions::read(p);
+        return o;
+    }
+};
+
 void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
+    const ParameterWiggleOptions options = ParameterWiggleOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const int phase = s.phaseIndex;
     WiggleSettings set;
-    set.grid = lattice(ctx.parameters.getInt("wiggle-samples"));
-    set.radialTolerance = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
-    set.radialIterations = ctx.parameters.getInt("radial-root-max-iterations");
-    set.freeRadialEnds = ctx.parameters.getBool("wiggle-radial-ends");
-    const int maxSweeps = ctx.parameters.getInt("wiggle-max-sweeps");
+    set.grid = lattice(options.samples);
+    set.radialTolerance = options.radial.rootTolerance * sceneScale(m);
+    set.radialIterations = options.radial.rootMaxIterations;
+    set.freeRadialEnds = options.freeRadialEnds;
+    const int maxSweeps = options.maxSweeps;
     OptimizationTally tally;
     WiggleStats st;
     sweepInconsistent(ctx, m, maxSweeps, true, tally, [&](Index v) {
@@ -353,20 +376,21 @@ void runParameterWiggle(const PhaseContext& ctx, Snapshot& s) {
                (set.freeRadialEnds && wiggle(m, v, set, phase, st, true));
     });
     publish(s, m);
-    publishTally(s, tally, "vertices", "wiggle-max-sweeps");
-    s.setCounter("samples per face", static_cast<double>(set.grid.points()));
-    s.setCounter("radial-edge ends moved along their radial plane",
+    publishTally(s, tally, counters::kVerticesTried, counters::kVerticesAccepted,
+                 "wiggle-max-sweeps");
+    s.setCounter(counters::kSamplesPerFace, static_cast<double>(set.grid.points()));
+    s.setCounter(counters::kRadialEdgeEndsMovedAlongTheirRadialPlane,
                  static_cast<double>(st.radialMoved));
-    s.setCounter("radial-plane roots without a chart or unconverged",
+    s.setCounter(counters::kRadialPlaneRootsWithoutAChartOrUnconverged,
                  static_cast<double>(st.radialUnconverged));
-    s.setCounter("vertices skipped (C, boundary, cusp edge, two radial edges)",
+    s.setCounter(counters::kVerticesSkippedCBoundaryCuspEdgeTwoRadialEdges,
                  static_cast<double>(st.skipped));
-    s.setCounter("samples rejected (fold, appendix C, degenerate edge)",
+    s.setCounter(counters::kSamplesRejectedFoldAppendixCDegenerateEdge,
                  static_cast<double>(st.rejected));
-    s.setCounter("samples without a chart", static_cast<double>(st.cancelledSamples));
-    s.setCounter("radial-edge ends moved off their radial plane (wiggle-radial-ends)",
+    s.setCounter(counters::kSamplesWithoutAChart, static_cast<double>(st.cancelledSamples));
+    s.setCounter(counters::kRadialEdgeEndsMovedOffTheirRadialPlaneWiggleRadialEnds,
                  static_cast<double>(st.radialFreed));
-    s.setCounter("radial edge tags dropped (wiggle-radial-ends)",
+    s.setCounter(counters::kRadialEdgeTagsDroppedWiggleRadialEnds,
                  static_cast<double>(st.radialTagsDropped));
 }
 

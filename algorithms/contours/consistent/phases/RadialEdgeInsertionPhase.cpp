@@ -1,11 +1,16 @@
 // Radial edge insertion (Bénard 2014 §6.3 g, Fig. 15g, 16d, 17, 18e; notes
 // §2.3, §6.1 item 6).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
-#include "contours/consistent/predicates/FoldTest.h"
-#include "contours/consistent/numerics/JointRootSearch.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
+#include "contours/consistent/numerics/JointRootSearch.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/RadialEdgeInsertion.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/FoldTest.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,20 +37,20 @@ enum class Outcome {
     CuspInside,     // radial-cusp-inside-hops: the inside region of a nearby cusp (Fig. 18e)
 };
 constexpr int kOutcomes = 13;
-const char* kOutcomeCounters[kOutcomes] = {
-    "radial edges inserted",
-    "skipped: no crossing face",
-    "skipped: no sign change between midpoints",
-    "skipped: root across the contour",
-    "skipped: fold (no flip fixes it)",
-    "skipped: parameter-space fold",
-    "skipped: no common chart",
-    "skipped: unconverged root",
-    "skipped: VBO defect",
-    "skipped: cusp outside region ambiguous",
-    "skipped: more inconsistent faces",
-    "skipped: next to a cusp without radial edges",
-    "skipped: inside region of a nearby cusp",
+constexpr CounterName kOutcomeCounters[kOutcomes] = {
+    counters::kRadialEdgesInserted,
+    counters::kSkippedNoCrossingFace,
+    counters::kSkippedNoSignChangeBetweenMidpoints,
+    counters::kSkippedRootAcrossTheContour,
+    counters::kSkippedFoldNoFlipFixesIt,
+    counters::kSkippedParameterSpaceFold,
+    counters::kSkippedNoCommonChart,
+    counters::kSkippedUnconvergedRoot,
+    counters::kSkippedVBODefect,
+    counters::kSkippedCuspOutsideRegionAmbiguous,
+    counters::kSkippedMoreInconsistentFaces,
+    counters::kSkippedNextToACuspWithoutRadialEdges,
+    counters::kSkippedInsideRegionOfANearbyCusp,
 };
 
 struct Settings {
@@ -64,6 +69,24 @@ struct Settings {
     double cuspPairPixels = 0.0;
     bool edgeFallback = true;
     bool bothSidesWhenAmbiguous = true;
+
+    // The phase's parameters, read once per run; `scale` is the bounding-box
+    // diagonal the radial tolerance is relative to.
+    static Settings read(const ParameterSet& p, double scale) {
+        Settings set;
+        const RadialEdgeOptions radial = RadialEdgeOptions::read(p);
+        set.tolerance = radial.rootTolerance * scale;
+        set.maxIterations = radial.rootMaxIterations;
+        set.jointMinBarycentric = p.getDouble("radial-joint-min-barycentric");
+        set.jointMaxEvaluations = p.getInt("radial-joint-max-evaluations");
+        set.keepConsistency = radial.keepConsistency;
+        set.cuspInsideHops = p.getInt("radial-cusp-inside-hops");
+        set.cuspInsidePixels = p.getDouble("radial-cusp-inside-pixels");
+        set.cuspPairPixels = p.getDouble("radial-cusp-pair-pixels");
+        set.edgeFallback = p.getBool("radial-cusp-opposite-edge");
+        set.bothSidesWhenAmbiguous = p.getBool("radial-cusp-both-sides");
+        return set;
+    }
 };
 
 // The preimage at barycentric coordinates b of the corners t (appendix B
@@ -219,6 +242,17 @@ private:
         return first;
     }
 
+    // The bisection of h_p along a segment whose ends h_p separates (lo on
+    // the negative side or not), to the radial tolerance.
+    BisectionOptions radialRootSearch() const {
+        BisectionOptions o;
+        o.step = BisectionStep::Midpoint;
+        o.sign = BisectionSign::Negative;
+        o.maxIterations = set_.maxIterations;
+        o.tolerance = set_.tolerance;
+        return o;
+    }
+
     double distance(Index p, const Vec3& q) const {
         return radialPlaneDistance(m_.camera(), m_.vertex(p), q);
     }
@@ -316,25 +350,24 @@ private:
         if (m_.vertex(o).cusp && !onRadialEdge(m_, o))
             return Outcome::NextToCusp;
         const Preimage &ua = m_.vertex(a).preimage, &ub = m_.vertex(b).preimage;
-        double ha = distance(p, m_.vertex(a).position);
-        if (!((ha < 0.0) != (distance(p, m_.vertex(b).position) < 0.0)))
+        const double ha = distance(p, m_.vertex(a).position);
+        const double hb = distance(p, m_.vertex(b).position);
+        if (!((ha < 0.0) != (hb < 0.0)))
             return Outcome::NoSignChange;
-        double lo = 0.0, hi = 1.0;
-        std::optional<MeshVertex> root;
-        for (int it = 0; it < set_.maxIterations && !root; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            const std::optional<Preimage> u = m_.interpolate(ua, ub, mid);
-            if (!u)
-                return Outcome::NoChart;
-            const MeshVertex v = m_.evaluate(*u);
-            const double h = distance(p, v.position);
-            if (std::abs(h) <= set_.tolerance)
-                root = v;
-            else
-                ((h < 0.0) == (ha < 0.0) ? lo : hi) = mid;
-        }
-        if (!root)
+        const BisectionResult<MeshVertex> found = bisect(
+            [&](double along) -> std::optional<MeshVertex> {
+                const std::optional<Preimage> u = m_.interpolate(ua, ub, along);
+                if (!u)
+                    return std::nullopt;
+                return m_.evaluate(*u);
+            },
+            [&](const MeshVertex& v) { return distance(p, v.position); }, {0.0, 1.0, ha, hb},
+            radialRootSearch());
+        if (found.outcome == BisectionOutcome::Failed)
+            return Outcome::NoChart;
+        if (found.outcome != BisectionOutcome::Converged)
             return Outcome::Unconverged;
+        const std::optional<MeshVertex>& root = found.last;
         MeshVertex r = *root;
         r.provenance = Provenance::Inserted;
         if (r.label == VertexLabel::Contour)
@@ -407,22 +440,14 @@ private:
         const double ha = distance(p, va->position), hb = distance(p, vb->position);
         if (!((ha < 0.0 && hb > 0.0) || (ha > 0.0 && hb < 0.0)))
             return Outcome::NoSignChange;
-        double lo = 0.0, hi = 1.0;
-        std::optional<MeshVertex> root;
-        for (int it = 0; it < set_.maxIterations; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            const std::optional<MeshVertex> v = sample(mid);
-            if (!v)
-                return Outcome::NoChart;
-            const double h = distance(p, v->position);
-            if (std::abs(h) <= set_.tolerance) {
-                root = v;
-                break;
-            }
-            ((h < 0.0) == (ha < 0.0) ? lo : hi) = mid;
-        }
-        if (!root)
+        const BisectionResult<MeshVertex> found = bisect(
+            sample, [&](const MeshVertex& v) { return distance(p, v.position); },
+            {0.0, 1.0, ha, hb}, radialRootSearch());
+        if (found.outcome == BisectionOutcome::Failed)
+            return Outcome::NoChart;
+        if (found.outcome != BisectionOutcome::Converged)
             return Outcome::Unconverged;
+        const std::optional<MeshVertex>& root = found.last;
         return place(t, *root, side, {p});
     }
 
@@ -604,17 +629,7 @@ private:
 
 void runRadialEdgeInsertion(const PhaseContext& ctx, Snapshot& s) {
     ConsistentMesh m = reload(ctx, s);
-    Settings set;
-    set.tolerance = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
-    set.maxIterations = ctx.parameters.getInt("radial-root-max-iterations");
-    set.jointMinBarycentric = ctx.parameters.getDouble("radial-joint-min-barycentric");
-    set.jointMaxEvaluations = ctx.parameters.getInt("radial-joint-max-evaluations");
-    set.keepConsistency = ctx.parameters.getBool("radial-keep-consistency");
-    set.cuspInsideHops = ctx.parameters.getInt("radial-cusp-inside-hops");
-    set.cuspInsidePixels = ctx.parameters.getDouble("radial-cusp-inside-pixels");
-    set.cuspPairPixels = ctx.parameters.getDouble("radial-cusp-pair-pixels");
-    set.edgeFallback = ctx.parameters.getBool("radial-cusp-opposite-edge");
-    set.bothSidesWhenAmbiguous = ctx.parameters.getBool("radial-cusp-both-sides");
+    const Settings set = Settings::read(ctx.parameters, sceneScale(m));
     RadialInserter inserter(m, set, s.phaseIndex);
     // Only C vertices and their fans are visited; inserted vertices are
     // never C, so the list is fixed.
@@ -640,25 +655,26 @@ void runRadialEdgeInsertion(const PhaseContext& ctx, Snapshot& s) {
         if (k != static_cast<int>(Outcome::Inserted))
             skipped += inserter.counts[k];
     }
-    s.setCounter("radial insertions skipped", static_cast<double>(skipped));
-    s.setCounter("joint radial vertices (two C)", static_cast<double>(inserter.jointVertices));
-    s.setCounter("joint searches without a usable root",
+    s.setCounter(counters::kRadialInsertionsSkipped, static_cast<double>(skipped));
+    s.setCounter(counters::kJointRadialVerticesTwoC, static_cast<double>(inserter.jointVertices));
+    s.setCounter(counters::kJointSearchesWithoutAUsableRoot,
                  static_cast<double>(inserter.jointFallbacks));
-    s.setCounter("fold-prevention flips", static_cast<double>(inserter.foldFlips));
-    s.setCounter("radial roots past the midpoints", static_cast<double>(inserter.beyondMidpoints));
-    s.setCounter("C vertices between opposite cusps (both sides)",
+    s.setCounter(counters::kFoldPreventionFlips, static_cast<double>(inserter.foldFlips));
+    s.setCounter(counters::kRadialRootsPastTheMidpoints,
+                 static_cast<double>(inserter.beyondMidpoints));
+    s.setCounter(counters::kCVerticesBetweenOppositeCuspsBothSides,
                  static_cast<double>(inserter.pairVertices));
-    s.setCounter("cusp radial edges on the opposite edge",
+    s.setCounter(counters::kCuspRadialEdgesOnTheOppositeEdge,
                  static_cast<double>(inserter.onOppositeEdge));
-    s.setCounter("radial edges in a farther crossing face",
+    s.setCounter(counters::kRadialEdgesInAFartherCrossingFace,
                  static_cast<double>(inserter.laterFaces));
-    s.setCounter("insertions undone (VBO defect)", static_cast<double>(inserter.undone));
-    s.setCounter("C vertices with their radial edges", static_cast<double>(coverage.complete));
-    s.setCounter("C vertex sides without a radial edge",
+    s.setCounter(counters::kInsertionsUndoneVBODefect, static_cast<double>(inserter.undone));
+    s.setCounter(counters::kCVerticesWithTheirRadialEdges, static_cast<double>(coverage.complete));
+    s.setCounter(counters::kCVertexSidesWithoutARadialEdge,
                  static_cast<double>(coverage.missingSides));
-    s.setCounter("max |h_p(r)| / diagonal", inserter.maxResidual / sceneScale(m));
-    s.setCounter("faces touching non-cusp C vertices", static_cast<double>(share.contourFaces));
-    s.setCounter("standard radial share (%)", share.percent());
+    s.setCounter(counters::kMaxHPRPerDiagonal, inserter.maxResidual / sceneScale(m));
+    s.setCounter(counters::kFacesTouchingNonCuspCVertices, static_cast<double>(share.contourFaces));
+    s.setCounter(counters::kStandardRadialSharePercent, share.percent());
     if (coverage.missingSides > 0)
         s.notes.push_back(std::to_string(coverage.missingSides) +
                           " sides of C vertices have no radial edge (§6.3 g post-condition); "
@@ -684,7 +700,7 @@ std::vector<InvariantCheck> checkRadialEdgeInsertion(const PhaseContext& ctx, co
     InvariantCheck coverage = check("every side of a C vertex without a radial edge (two at a "
                                     "cusp) was counted as a skipped insertion");
     const long long missing = radialCoverage(m).missingSides;
-    const double skipped = s.counter("radial insertions skipped", 0.0);
+    const double skipped = s.counter(counters::kRadialInsertionsSkipped, 0.0);
     if (static_cast<double>(missing) > skipped) {
         coverage.violations = missing - static_cast<long long>(skipped);
         coverage.firstExample = std::to_string(missing) + " sides missing, " +
@@ -695,6 +711,17 @@ std::vector<InvariantCheck> checkRadialEdgeInsertion(const PhaseContext& ctx, co
 }
 
 } // namespace
+
+RadialEdgeOptions RadialEdgeOptions::read(const ParameterSet& p) {
+    RadialEdgeOptions o;
+    if (p.has("radial-root-tolerance"))
+        o.rootTolerance = p.getDouble("radial-root-tolerance");
+    if (p.has("radial-root-max-iterations"))
+        o.rootMaxIterations = p.getInt("radial-root-max-iterations");
+    if (p.has("radial-keep-consistency"))
+        o.keepConsistency = p.getBool("radial-keep-consistency");
+    return o;
+}
 
 void addRadialEdgeInsertionPhase(Method& m) {
     m.parameters.push_back(

@@ -2,12 +2,16 @@
 // §2.4.1): inconsistent faces just beyond the radial strip are fixed by
 // sliding the far end of a radial edge along its radial curve and flipping
 // the edge opposite it.
-#include "contours/consistent/ConsistentPhases.h"
 #include "contours/consistent/edits/LocalEdit.h"
-#include "contours/consistent/edits/RadialTriangles.h"
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
+#include "contours/consistent/phases/RadialEdgeInsertion.h"
 #include "contours/consistent/phases/RadialExtension.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 
 #include <algorithm>
 #include <array>
@@ -23,6 +27,7 @@ struct ExtensionSettings {
     double tolerance = 0.0; // on radialPlaneDistance, absolute
     int maxIterations = 100;
     int pushDepth = 0; // extension-cusp-push-depth
+    int maxSweeps = 0; // extension-max-sweeps
 };
 
 struct ExtensionStats {
@@ -403,29 +408,24 @@ private:
     // nothing when h_p does not change sign, a chart is missing or the
     // bisection does not reach the tolerance.
     std::optional<Preimage> root(Index p, const Preimage& a, const Preimage& b) {
-        double ha = h(p, a);
+        const double ha = h(p, a);
         const double hb = h(p, b);
         if (!(ha * hb <= 0.0))
             return std::nullopt;
-        double lo = 0.0, hi = 1.0;
         const ConsistentMesh::Segment ab = m_.segment(a, b);
-        for (int it = 0; it < set_.maxIterations; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            const std::optional<Preimage> u = ab.at(mid);
-            if (!u)
-                return std::nullopt;
-            const double hm = h(p, *u);
-            if (std::abs(hm) <= set_.tolerance)
-                return u;
-            if ((hm < 0.0) == (ha < 0.0)) {
-                lo = mid;
-                ha = hm;
-            } else {
-                hi = mid;
-            }
-        }
-        ++stats.unconverged;
-        return std::nullopt;
+        BisectionOptions search;
+        search.step = BisectionStep::Midpoint;
+        search.sign = BisectionSign::Negative;
+        search.maxIterations = set_.maxIterations;
+        search.tolerance = set_.tolerance;
+        BisectionResult<Preimage> r =
+            bisect([&](double along) { return ab.at(along); },
+                   [&](const Preimage& u) { return h(p, u); }, {0.0, 1.0, ha, hb}, search);
+        if (r.outcome == BisectionOutcome::Exhausted)
+            ++stats.unconverged;
+        if (r.outcome != BisectionOutcome::Converged)
+            return std::nullopt;
+        return std::move(r.last);
     }
 
     // Samples of p's radial curve beyond q, in the face q-x-y of q's star
@@ -610,13 +610,11 @@ ExtensionSettings extensionSettings(const PhaseContext& ctx, const ConsistentMes
     // The radial edges' own tolerance (§6.3 g), so that an extended edge
     // still passes their post-condition.
     const double scale = sceneScale(m);
-    set.tolerance = (ctx.parameters.has("radial-root-tolerance")
-                         ? ctx.parameters.getDouble("radial-root-tolerance")
-                         : 1e-10) *
-                    scale;
-    if (ctx.parameters.has("radial-root-max-iterations"))
-        set.maxIterations = ctx.parameters.getInt("radial-root-max-iterations");
+    const RadialEdgeOptions radial = RadialEdgeOptions::read(ctx.parameters);
+    set.tolerance = radial.rootTolerance * scale;
+    set.maxIterations = radial.rootMaxIterations;
     set.pushDepth = ctx.parameters.getInt("extension-cusp-push-depth");
+    set.maxSweeps = ctx.parameters.getInt("extension-max-sweeps");
     return set;
 }
 
@@ -643,7 +641,7 @@ long long pushCuspEnds(const PhaseContext& ctx, ConsistentMesh& m, Extender& ext
 void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
     ConsistentMesh m = reload(ctx, s);
     const ExtensionSettings set = extensionSettings(ctx, m);
-    const int maxSweeps = ctx.parameters.getInt("extension-max-sweeps");
+    const int maxSweeps = set.maxSweeps;
     Extender ext(m, set, s.phaseIndex);
     OptimizationTally tally;
     tally.before = static_cast<long long>(inconsistentFaces(m).size());
@@ -695,32 +693,38 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
         tally.sweepLimitHit = tally.sweeps == maxSweeps && count > 0;
     }
     publish(s, m);
-    publishTally(s, tally, "radial edges", "extension-max-sweeps");
-    s.setCounter("radial plane crossings found", static_cast<double>(ext.stats.crossings));
-    s.setCounter("radial curve samples", static_cast<double>(ext.stats.candidates));
-    s.setCounter("samples rejected (fold, appendix C, VBO or degenerate edge)",
+    publishTally(s, tally, counters::kRadialEdgesTried, counters::kRadialEdgesAccepted,
+                 "extension-max-sweeps");
+    s.setCounter(counters::kRadialPlaneCrossingsFound, static_cast<double>(ext.stats.crossings));
+    s.setCounter(counters::kRadialCurveSamples, static_cast<double>(ext.stats.candidates));
+    s.setCounter(counters::kSamplesRejectedFoldAppendixCVBOOrDegenerateEdge,
                  static_cast<double>(ext.stats.rejected));
-    s.setCounter("samples on the other side of the contour",
+    s.setCounter(counters::kSamplesOnTheOtherSideOfTheContour,
                  static_cast<double>(ext.stats.sideChange));
-    s.setCounter("moves without fewer inconsistent faces", static_cast<double>(ext.stats.noGain));
-    s.setCounter("rejected: undefined VBO or degenerate CC edge",
+    s.setCounter(counters::kMovesWithoutFewerInconsistentFaces,
+                 static_cast<double>(ext.stats.noGain));
+    s.setCounter(counters::kRejectedUndefinedVBOOrDegenerateCCEdge,
                  static_cast<double>(ext.stats.labels));
-    s.setCounter("rejected: parameter fold", static_cast<double>(ext.stats.param));
-    s.setCounter("rejected: appendix C", static_cast<double>(ext.stats.appendixC));
-    s.setCounter("rejected: face turned over in 3D", static_cast<double>(ext.stats.turned));
-    s.setCounter("flips", static_cast<double>(ext.stats.flips));
-    s.setCounter("face with two radial ends: pairs sampled", static_cast<double>(ext.stats.pairs));
-    const char* reasons[] = {"undefined VBO or degenerate CC edge", "parameter fold", "appendix C",
-                             "face turned over in 3D"};
+    s.setCounter(counters::kRejectedParameterFold, static_cast<double>(ext.stats.param));
+    s.setCounter(counters::kRejectedAppendixC, static_cast<double>(ext.stats.appendixC));
+    s.setCounter(counters::kRejectedFaceTurnedOverIn3D, static_cast<double>(ext.stats.turned));
+    s.setCounter(counters::kFlips, static_cast<double>(ext.stats.flips));
+    s.setCounter(counters::kFaceWithTwoRadialEndsPairsSampled,
+                 static_cast<double>(ext.stats.pairs));
+    const CounterName reasons[] = {
+        counters::kFaceWithTwoRadialEndsRejectedUndefinedVBOOrDegenerateCCEdge,
+        counters::kFaceWithTwoRadialEndsRejectedParameterFold,
+        counters::kFaceWithTwoRadialEndsRejectedAppendixC,
+        counters::kFaceWithTwoRadialEndsRejectedFaceTurnedOverIn3D};
     for (int r = 0; r < 4; ++r)
-        s.setCounter(std::string("face with two radial ends: rejected: ") + reasons[r],
-                     static_cast<double>(ext.stats.pairRejected[r]));
-    s.setCounter("face with two radial ends: both moved", static_cast<double>(ext.stats.pairMoves));
-    s.setCounter("unconverged radial roots", static_cast<double>(ext.stats.unconverged));
+        s.setCounter(reasons[r], static_cast<double>(ext.stats.pairRejected[r]));
+    s.setCounter(counters::kFaceWithTwoRadialEndsBothMoved,
+                 static_cast<double>(ext.stats.pairMoves));
+    s.setCounter(counters::kUnconvergedRadialRoots, static_cast<double>(ext.stats.unconverged));
     s.setCounter("cusp radial ends: pushes tried", static_cast<double>(ext.stats.pushTried));
     s.setCounter("cusp radial ends: pushed", static_cast<double>(ext.stats.pushMoves));
     s.setCounter("cusp radial ends: flips of pushes", static_cast<double>(ext.stats.pushFlips));
-    if (m.edgeTags().empty() || s.counter("radial edges", 0.0) == 0.0)
+    if (m.edgeTags().empty() || s.counter(counters::kRadialEdges, 0.0) == 0.0)
         s.notes.push_back("radial edge extension: the mesh has no radial edges (radial edge "
                           "insertion, §6.3 g, did not run or inserted none), nothing to extend");
 }

@@ -1,9 +1,13 @@
 // Edge flipping towards standard radial triangles (Bénard 2014 §6.3 h,
 // Fig. 15h, 16e; notes §2.3, §6.1 item 7).
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
-#include "contours/consistent/ConsistentPhases.h"
+#include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/PhaseChecks.h"
+#include "contours/consistent/phases/RadialEdgeInsertion.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FaceClassification.h"
 #include "contours/consistent/predicates/FoldTest.h"
-#include "contours/consistent/edits/RadialTriangles.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 
 #include <algorithm>
 #include <deque>
@@ -404,34 +408,48 @@ private:
     }
 };
 
+// The phase's parameters, read once per run.
+struct RadialFlipOptions {
+    bool foldFallback = false;    // radial-fold-fallback
+    bool keepConsistency = false; // radial edge insertion's radial-keep-consistency
+    bool fanSequences = false;    // radial-fan-sequences
+    static RadialFlipOptions read(const ParameterSet& p) {
+        RadialFlipOptions o;
+        o.foldFallback = p.getBool("radial-fold-fallback");
+        o.keepConsistency = RadialEdgeOptions::read(p).keepConsistency;
+        o.fanSequences = p.getBool("radial-fan-sequences");
+        return o;
+    }
+};
+
 void runRadialFlips(const PhaseContext& ctx, Snapshot& s) {
+    const RadialFlipOptions options = RadialFlipOptions::read(ctx.parameters);
     ConsistentMesh m = reload(ctx, s);
     const StandardRadialShare before = standardRadialShare(m);
     const RadialClassification classes = classifyRadialFaces(m);
     const double standardBefore =
         static_cast<double>(std::count(classes.standard.begin(), classes.standard.end(), 1));
-    RadialFlipper flipper(m, s.phaseIndex, ctx.parameters.getBool("radial-fold-fallback"),
-                          ctx.parameters.getBool("radial-keep-consistency"),
-                          ctx.parameters.getBool("radial-fan-sequences"));
+    RadialFlipper flipper(m, s.phaseIndex, options.foldFallback, options.keepConsistency,
+                          options.fanSequences);
     flipper.run(ctx);
     const StandardRadialShare after = standardRadialShare(m);
     publish(s, m);
-    s.setCounter("standard radial faces before", standardBefore);
-    s.setCounter("radial flips", static_cast<double>(flipper.flips));
-    s.setCounter("flips rejected (fold)", static_cast<double>(flipper.rejectedFold));
-    s.setCounter("fold fallbacks tried", static_cast<double>(flipper.fallbackAttempts));
-    s.setCounter("fold fallbacks not applicable",
+    s.setCounter(counters::kStandardRadialFacesBefore, standardBefore);
+    s.setCounter(counters::kRadialFlips, static_cast<double>(flipper.flips));
+    s.setCounter(counters::kFlipsRejectedFold, static_cast<double>(flipper.rejectedFold));
+    s.setCounter(counters::kFoldFallbacksTried, static_cast<double>(flipper.fallbackAttempts));
+    s.setCounter(counters::kFoldFallbacksNotApplicable,
                  static_cast<double>(flipper.fallbackNotApplicable));
-    s.setCounter("fold fallbacks undone", static_cast<double>(flipper.fallbackFailed));
-    s.setCounter("fold fallback flips", static_cast<double>(flipper.fallbackFlips));
-    s.setCounter("vertex deletions", static_cast<double>(flipper.deletions));
-    s.setCounter("fan sequences tried", static_cast<double>(flipper.fanAttempts));
-    s.setCounter("fan sequences undone", static_cast<double>(flipper.fanUndone));
-    s.setCounter("fan sequences flipped", static_cast<double>(flipper.fanClears));
-    s.setCounter("fan sequence flips", static_cast<double>(flipper.fanFlips));
-    s.setCounter("faces touching non-cusp C vertices", static_cast<double>(after.contourFaces));
-    s.setCounter("standard radial share before (%)", before.percent());
-    s.setCounter("standard radial share (%)", after.percent());
+    s.setCounter(counters::kFoldFallbacksUndone, static_cast<double>(flipper.fallbackFailed));
+    s.setCounter(counters::kFoldFallbackFlips, static_cast<double>(flipper.fallbackFlips));
+    s.setCounter(counters::kVertexDeletions, static_cast<double>(flipper.deletions));
+    s.setCounter(counters::kFanSequencesTried, static_cast<double>(flipper.fanAttempts));
+    s.setCounter(counters::kFanSequencesUndone, static_cast<double>(flipper.fanUndone));
+    s.setCounter(counters::kFanSequencesFlipped, static_cast<double>(flipper.fanClears));
+    s.setCounter(counters::kFanSequenceFlips, static_cast<double>(flipper.fanFlips));
+    s.setCounter(counters::kFacesTouchingNonCuspCVertices, static_cast<double>(after.contourFaces));
+    s.setCounter(counters::kStandardRadialShareBeforePercent, before.percent());
+    s.setCounter(counters::kStandardRadialSharePercent, after.percent());
     if (after.standard < after.contourFaces)
         s.notes.push_back(std::to_string(after.contourFaces - after.standard) + " of " +
                           std::to_string(after.contourFaces) +
@@ -445,8 +463,8 @@ std::vector<InvariantCheck> checkRadialFlips(const PhaseContext& ctx, const Snap
     out.push_back(radialEdgeCheck(ctx, m));
     InvariantCheck more = check("radial flips never decrease the number of standard radial "
                                 "triangles (§6.3 h)");
-    const double before = s.counter("standard radial faces before", 0.0);
-    const double after = s.counter("standard radial faces", 0.0);
+    const double before = s.counter(counters::kStandardRadialFacesBefore, 0.0);
+    const double after = s.counter(counters::kStandardRadialFaces, 0.0);
     if (after < before) {
         more.violations = 1;
         more.firstExample = std::to_string(after) + " < " + std::to_string(before);

@@ -1,6 +1,4 @@
-#include "contours/consistent/edits/RadialTriangles.h"
-
-#include "contours/consistent/phases/ConsistentPhaseSupport.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 
 #include <cmath>
 #include <limits>
@@ -83,26 +81,36 @@ RadialCoverage radialCoverage(const ConsistentMesh& m) {
     return c;
 }
 
-InvariantCheck radialEdgeCheck(const PhaseContext& ctx, const ConsistentMesh& m) {
-    InvariantCheck c = check("every radial edge joins a C vertex p to an F or B vertex r with "
-                             "|h_p(r)| <= radial-root-tolerance (as a distance, §6.3 g)");
-    const double tol = ctx.parameters.getDouble("radial-root-tolerance") * sceneScale(m);
+RadialClassification classifyRadialFaces(const ConsistentMesh& m) {
+    RadialClassification c;
+    c.radial.assign(m.faceCount(), 0);
+    c.standard.assign(m.faceCount(), 0);
+    // The faces on both sides of every radial edge (visiting the few tagged
+    // edges, not every face's three edges).
+    const auto isContour = [&](Index v) {
+        return m.vertex(v).label == VertexLabel::Contour;
+    };
     for (const auto& [k, tag] : m.edgeTags()) {
         if (!(tag & kRadialEdge))
             continue;
         const auto [a, b] = ConsistentMesh::edgeFromKey(k);
-        const bool aC = m.vertex(a).label == VertexLabel::Contour;
-        const bool bC = m.vertex(b).label == VertexLabel::Contour;
-        if (aC == bC) {
-            violate(c, "edge " + std::to_string(a) + "-" + std::to_string(b) +
-                           (aC ? " joins two C vertices" : " has no C vertex"));
-            continue;
+        for (const Index f : {m.faceOfHalfedge(a, b), m.faceOfHalfedge(b, a)}) {
+            if (f == kInvalidIndex)
+                continue;
+            c.radial[f] = 1;
+            Index q = kInvalidIndex;
+            for (Index w : m.face(f))
+                if (w != a && w != b)
+                    q = w;
+            // A CC edge: q and the edge's C end p.
+            const bool ccEdge = isContour(q) && (isContour(a) || isContour(b));
+            // q on another radial edge (q is not on a-b).
+            bool otherRadial = false;
+            for (Index w : ccEdge ? std::vector<Index>{} : m.neighbours(q))
+                otherRadial = otherRadial || (m.edgeTag(q, w) & kRadialEdge);
+            if (ccEdge || otherRadial)
+                c.standard[f] = 1;
         }
-        const Index p = aC ? a : b, r = aC ? b : a;
-        const double d = radialPlaneDistance(m.camera(), m.vertex(p), m.vertex(r).position);
-        if (!(std::abs(d) <= tol))
-            violate(c, "edge " + std::to_string(p) + "-" + std::to_string(r) + ": distance " +
-                           std::to_string(d) + " to p's radial plane");
     }
     return c;
 }

@@ -1,9 +1,8 @@
 #pragma once
 // Radial edges and standard radial triangles of the editable mesh (Bénard
-// 2014 §5 Definition 5, §6.3; notes §1.5, §2.3): what radial edge insertion
+// 2014 §5 Definition 5, §6.3): what radial edge insertion
 // creates and what the radial flips count.
 #include "contours/consistent/mesh/ConsistentMesh.h"
-#include "pipeline/Method.h"
 
 #include <vector>
 
@@ -27,6 +26,14 @@ int radialEdgesOnSide(const ConsistentMesh& m, Index p, VertexLabel side);
 // Same rule as classifyRadialFaces().
 bool isStandardRadial(const ConsistentMesh& m, const Triangle& t);
 
+// Definition 5 and §6.3 for every face: a face is radial when one of its
+// edges is a radial edge p-r; standard radial when, in addition, it has a CC
+// edge or its third vertex is an endpoint of another radial edge.
+struct RadialClassification {
+    std::vector<int> radial, standard;
+};
+RadialClassification classifyRadialFaces(const ConsistentMesh& m);
+
 // Faces touching a C vertex that is not a cusp, and how many of them are
 // standard radial: the §6.3 (h) target ("all radial triangles touching
 // non-cusp contours are standard"), reported, not guaranteed.
@@ -42,10 +49,5 @@ struct RadialCoverage {
     long long contourVertices = 0, complete = 0, missingSides = 0;
 };
 RadialCoverage radialCoverage(const ConsistentMesh& m);
-
-// Post-condition of §6.3 (g) that every later phase keeps: each radial edge
-// joins a C vertex p to an F or B vertex r with |h_p(r)| (as a distance)
-// below `radial-root-tolerance` times the bounding-box diagonal.
-InvariantCheck radialEdgeCheck(const PhaseContext& ctx, const ConsistentMesh& m);
 
 } // namespace contour::consistent

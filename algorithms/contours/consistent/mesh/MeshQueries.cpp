@@ -1,0 +1,38 @@
+#include "contours/consistent/mesh/MeshQueries.h"
+
+#include <algorithm>
+#include <string>
+
+namespace contour::consistent {
+
+double sceneScale(const ConsistentMesh& m) {
+    BoundingBox box;
+    for (Index v = 0; v < m.vertexCount(); ++v)
+        box.extend(m.vertex(v).position);
+    const double d = box.diagonal();
+    return d > 0.0 ? d : 1.0;
+}
+
+std::string describeFace(const ConsistentMesh& m, Index f) {
+    std::string out = "face " + std::to_string(f) + ":";
+    for (Index v : m.face(f)) {
+        const MeshVertex& x = m.vertex(v);
+        out += " v" + std::to_string(v) + " (domain face " + std::to_string(x.preimage.face) +
+               " u " + std::to_string(x.preimage.u) + " v " + std::to_string(x.preimage.v) +
+               ", label " + std::to_string(static_cast<int>(x.label)) + ", provenance " +
+               std::to_string(static_cast<int>(x.provenance)) + ", phase " +
+               std::to_string(x.phase) + ")";
+    }
+    return out;
+}
+
+std::vector<Index> facesAround(const ConsistentMesh& m, const std::vector<Index>& vertices) {
+    std::vector<Index> faces;
+    for (Index v : vertices)
+        faces.insert(faces.end(), m.vertexFaces(v).begin(), m.vertexFaces(v).end());
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+}
+
+} // namespace contour::consistent
