@@ -126,7 +126,7 @@ private slots:
         camera.up = Vec3(0, 0, 1);
         camera.projection = orthographic ? Projection::Orthographic : Projection::Perspective;
         camera.orthoHeight = 3.0;
-        ParameterSet p;
+        Overrides p;
         p.set("normal-weighting", weighting.toStdString());
         const Snapshot s = runMethod("interpolated", torus, camera, p);
         int open = 0;

@@ -371,7 +371,8 @@ private slots:
         }
     }
 
-    // DESIGN.md, facing: g > 0 on the hemisphere nearer the camera.
+    // The facing convention (Bénard 2014 eq. 1): g > 0 on the hemisphere
+    // nearer the camera.
     void nearHemisphereIsFront() {
         const ProjectedSphere sphere(cube(), 1.0, Vec3::Zero());
         std::mt19937 rng(3);
@@ -796,9 +797,7 @@ private slots:
         else
             mesh = std::make_shared<const PolygonMesh>(
                 readMesh(CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj"));
-        ParameterSet p;
-        p.set("surface", surface.toStdString());
-        p.set("tessellation-level", level);
+        const Overrides p{{"surface", surface.toStdString()}, {"tessellation-level", level}};
         for (const Camera& camera : protocolViews(mesh->boundingBox(), 0)) {
             const Snapshot s = runMethod(method.toStdString(), mesh, camera, p);
             QCOMPARE(s.invariantViolations(), 0LL);
@@ -830,8 +829,7 @@ private slots:
         const auto cage = std::make_shared<const PolygonMesh>(loop ? octahedron() : cube());
         const auto surface =
             cachedSmoothSurface(cage, loop ? SurfaceKind::Loop : SurfaceKind::CatmullClark).surface;
-        ParameterSet p;
-        p.set("surface", std::string(loop ? "loop" : "catmull-clark"));
+        Overrides p{{"surface", loop ? "loop" : "catmull-clark"}};
         const Camera camera = perspectiveAt(Vec3(0.7, -1.1, 4.5), Vec3::Zero());
         double previous = 1.0, first = 0.0;
         for (int level : {2, 4, 8, 16}) {
