@@ -247,9 +247,7 @@ private slots:
     // pass (§6.1) never searches. Spot, views 2, 5, 19, 22 and 31 (26 + 10
     // random): with one round such edges exist after initialization and the
     // contour joins two loops into one, or splits one, or loses a small loop
-    // and its cusps (measured: 8/7, 4/3, 8/7, 4/3 and 6/7 loops against the
-    // ground truth's, 21/22 and 18/20 cusps on views 2 and 31); with the
-    // default rounds no edge hides a sign change (g sampled 100 times per
+    // and its cusps; with the default rounds no edge hides a sign change (g sampled 100 times per
     // edge) and loops and cusps match the dense ground truth.
     void splitVertexEdgesAreSearched() {
         const auto cage = cageFor("spot");

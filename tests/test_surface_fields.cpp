@@ -651,7 +651,7 @@ private slots:
     // Interpolated contours on the tessellated analytic sphere are one closed
     // loop, with exact normals, and converge to the true contour generator
     // (for a unit sphere and an eye e, the circle x · e = 1 on the sphere) at
-    // second order: measured 0.116, 0.049, 0.015, 0.0037 at levels 2, 4, 8, 16.
+    // second order.
     void interpolatedContoursOnAnalyticSphereConverge() {
         const auto sphere = std::make_shared<const ProjectedSphere>(cube(), 1.0, Vec3::Zero());
         const Vec3 eye(0.3, -0.5, 4.0);
@@ -814,11 +814,10 @@ private slots:
 
     // On a sphere-like cage (Catmull-Clark of a cube, and Loop of an
     // octahedron), the interpolated contour approaches the smooth contour
-    // generator as the level increases. Measured (worst distance, levels 2, 4,
-    // 8, 16): Catmull-Clark 0.048, 0.012, 0.0029, 0.00075 (second order);
-    // Loop 0.090, 0.037, 0.011, 0.0043, slower because the worst points sit
-    // next to the octahedron's valence-4 (extraordinary) vertices, where the
-    // Loop limit surface is less smooth and its end caps approximate.
+    // generator as the level increases: at second order for Catmull-Clark,
+    // slower for Loop, whose worst points sit next to the octahedron's
+    // valence-4 (extraordinary) vertices, where the Loop limit surface is
+    // less smooth and its end caps approximate.
     void interpolatedContoursConvergeOnLimitSurfaces_data() {
         QTest::addColumn<bool>("loop");
         QTest::newRow("catmull-clark cube") << false;
