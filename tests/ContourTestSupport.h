@@ -1,5 +1,7 @@
 #pragma once
-// Shared set-up for the contour suites: run a method to the end on a shape.
+// Shared set-up for the contour suites: run a method on a shape with named
+// parameter overrides and keep its snapshots, the shapes and views of the
+// protocols, and the measured figures the tests assert (tests/baselines/).
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
 #include "mesh/io/MeshReader.h"
@@ -88,7 +90,8 @@ struct MethodRun {
 };
 
 // Runs `method` on `mesh` seen from `camera` to the end, or up to and
-// including the phase named `stopAfter`, and keeps every snapshot.
+// including the phase named `stopAfter` (which the method must have), and
+// keeps every snapshot.
 inline MethodRun run(const std::string& method, std::shared_ptr<const PolygonMesh> mesh,
                      const Camera& camera, const Overrides& overrides = {},
                      const std::string& stopAfter = {}) {
@@ -101,6 +104,8 @@ inline MethodRun run(const std::string& method, std::shared_ptr<const PolygonMes
     else
         while (runner.current().phaseName != stopAfter && runner.step()) {
         }
+    if (!stopAfter.empty() && runner.current().phaseName != stopAfter)
+        throw std::invalid_argument("method " + method + " has no phase " + stopAfter);
     return {runner.snapshots()};
 }
 
