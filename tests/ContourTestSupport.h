@@ -49,8 +49,18 @@ public:
         entries_.emplace_back(name, std::move(value));
         return *this;
     }
+    // One overload per parameter type, so that a literal 0 is an int, not
+    // a null const char*.
+    Overrides& set(const std::string& name, bool value) { return set(name, ParameterValue(value)); }
+    Overrides& set(const std::string& name, int value) { return set(name, ParameterValue(value)); }
+    Overrides& set(const std::string& name, double value) {
+        return set(name, ParameterValue(value));
+    }
     Overrides& set(const std::string& name, const char* value) {
         return set(name, ParameterValue(std::string(value)));
+    }
+    Overrides& set(const std::string& name, std::string value) {
+        return set(name, ParameterValue(std::move(value)));
     }
     const std::vector<Entry>& entries() const { return entries_; }
 
