@@ -1,11 +1,17 @@
 #pragma once
-// Shared set-up for the contour suites: run a method to the end on a shape.
+// Shared set-up for the contour suites: run a method on a shape with named
+// parameter overrides and keep its snapshots, the shapes and views of the
+// protocols, and the measured figures the tests assert (tests/baselines/).
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/Runner.h"
 
 #include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -13,28 +19,111 @@
 
 namespace contour::testing {
 
-inline Snapshot runMethod(const std::string& method, std::shared_ptr<const PolygonMesh> mesh,
-                          const Camera& camera, ParameterSet parameters = {}) {
-    const Method& m = *findMethod(method);
-    ParameterSet p = ParameterSet::defaults(m.parameters);
-    for (const auto& [name, value] : parameters.values())
-        p.set(name, value);
-    Runner runner(m, makeInputSnapshot(std::move(mesh)), camera, p);
-    runner.runToEnd();
-    return runner.current();
+// Parameters of one run by name, over the method's defaults: built from a
+// list ({{"surface", "catmull-clark"}, {"cusp-retry", false}}) or set one by
+// one. run() refuses a name the method does not have.
+class Overrides {
+public:
+    struct Entry {
+        std::string name;
+        ParameterValue value;
+        Entry(std::string n, bool v) : name(std::move(n)), value(v) {}
+        Entry(std::string n, int v) : name(std::move(n)), value(v) {}
+        Entry(std::string n, double v) : name(std::move(n)), value(v) {}
+        Entry(std::string n, const char* v) : name(std::move(n)), value(std::string(v)) {}
+        Entry(std::string n, std::string v) : name(std::move(n)), value(std::move(v)) {}
+        Entry(std::string n, ParameterValue v) : name(std::move(n)), value(std::move(v)) {}
+    };
+    Overrides() = default;
+    Overrides(std::initializer_list<Entry> entries) {
+        for (const Entry& e : entries)
+            set(e.name, e.value);
+    }
+    // The later value of a name wins.
+    Overrides& set(const std::string& name, ParameterValue value) {
+        for (Entry& e : entries_)
+            if (e.name == name) {
+                e.value = std::move(value);
+                return *this;
+            }
+        entries_.emplace_back(name, std::move(value));
+        return *this;
+    }
+    // One overload per parameter type, so that a literal 0 is an int, not
+    // a null const char*.
+    Overrides& set(const std::string& name, bool value) { return set(name, ParameterValue(value)); }
+    Overrides& set(const std::string& name, int value) { return set(name, ParameterValue(value)); }
+    Overrides& set(const std::string& name, double value) {
+        return set(name, ParameterValue(value));
+    }
+    Overrides& set(const std::string& name, const char* value) {
+        return set(name, ParameterValue(std::string(value)));
+    }
+    Overrides& set(const std::string& name, std::string value) {
+        return set(name, ParameterValue(std::move(value)));
+    }
+    const std::vector<Entry>& entries() const { return entries_; }
+
+private:
+    std::vector<Entry> entries_;
+};
+
+// The method's defaults with `overrides` applied.
+inline ParameterSet parametersOf(const Method& method, const Overrides& overrides) {
+    ParameterSet p = ParameterSet::defaults(method.parameters);
+    for (const Overrides::Entry& e : overrides.entries()) {
+        if (!p.has(e.name))
+            throw std::invalid_argument("method " + method.name + " has no parameter " + e.name);
+        p.set(e.name, e.value);
+    }
+    return p;
 }
 
 // Every snapshot of one run (the input first); phases are looked up by name,
 // never by index, since sub-phases get inserted between others.
-struct PhaseRun {
+struct MethodRun {
     std::vector<Snapshot> snapshots;
-    const Snapshot& after(const std::string& phase) const {
+    // The snapshot after `name`, or null when the method has no such phase
+    // (or the run stopped before it).
+    const Snapshot* findPhase(const std::string& name) const {
         for (const Snapshot& s : snapshots)
-            if (s.phaseName == phase)
-                return s;
-        throw std::runtime_error("no phase " + phase);
+            if (s.phaseName == name)
+                return &s;
+        return nullptr;
     }
+    const Snapshot& phase(const std::string& name) const {
+        if (const Snapshot* s = findPhase(name))
+            return *s;
+        throw std::runtime_error("no phase " + name);
+    }
+    const Snapshot& last() const { return snapshots.back(); }
 };
+
+// Runs `method` on `mesh` seen from `camera` to the end, or up to and
+// including the phase named `stopAfter` (which the method must have), and
+// keeps every snapshot.
+inline MethodRun run(const std::string& method, std::shared_ptr<const PolygonMesh> mesh,
+                     const Camera& camera, const Overrides& overrides = {},
+                     const std::string& stopAfter = {}) {
+    const Method* m = findMethod(method);
+    if (!m)
+        throw std::invalid_argument("no method " + method);
+    Runner runner(*m, makeInputSnapshot(std::move(mesh)), camera, parametersOf(*m, overrides));
+    if (stopAfter.empty())
+        runner.runToEnd();
+    else
+        while (runner.current().phaseName != stopAfter && runner.step()) {
+        }
+    if (!stopAfter.empty() && runner.current().phaseName != stopAfter)
+        throw std::invalid_argument("method " + method + " has no phase " + stopAfter);
+    return {runner.snapshots()};
+}
+
+// The last snapshot of run().
+inline Snapshot runMethod(const std::string& method, std::shared_ptr<const PolygonMesh> mesh,
+                          const Camera& camera, const Overrides& overrides = {}) {
+    return run(method, std::move(mesh), camera, overrides).last();
+}
 
 // The final inconsistent faces of one view run without and with a change
 // (the last snapshot of each run): totals over the views and how many views
@@ -59,6 +148,28 @@ struct OnOffCounts {
         return {};
     }
 };
+
+// A measured figure a test asserts (a ceiling or a floor, with its margin),
+// from tests/baselines/<file>.json: {"<key>": {"value": 0.235, "what": "...",
+// "command": "..."}}, "command" being how the figure was measured. Throws
+// when the file or the key is absent, so a renamed key fails the test.
+inline double baseline(const std::string& file, const std::string& key) {
+    static std::map<std::string, nlohmann::json> loaded;
+    auto it = loaded.find(file);
+    if (it == loaded.end()) {
+        const std::string path =
+            std::string(CONTOUR_SOURCE_DIR) + "/tests/baselines/" + file + ".json";
+        std::ifstream in(path);
+        if (!in)
+            throw std::runtime_error("cannot read " + path);
+        it = loaded.emplace(file, nlohmann::json::parse(in)).first;
+    }
+    const auto entry = it->second.find(key);
+    if (entry == it->second.end() || !entry->contains("value"))
+        throw std::runtime_error("tests/baselines/" + file + ".json has no value for \"" + key +
+                                 "\"");
+    return entry->at("value").get<double>();
+}
 
 inline int contourLoops(const Snapshot& s, int* open = nullptr) {
     int loops = 0, opened = 0;

@@ -51,9 +51,9 @@ struct FaceResult {
 };
 
 std::uint64_t edgeKey(Index a, Index b) {
-    const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-    const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-    return (lo << 32) | hi;
+    const auto low = static_cast<std::uint64_t>(std::min(a, b));
+    const auto high = static_cast<std::uint64_t>(std::max(a, b));
+    return (low << 32) | high;
 }
 
 // The crossing on the lattice edge (a, b) at local lattice points pa, pb.

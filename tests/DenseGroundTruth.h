@@ -1,7 +1,6 @@
 #pragma once
 // An independent, dense answer for the topology of the smooth contour
-// generator (issue 4, "Validation against an independent answer"; notes on
-// Bénard 2014 §6.1 item 11). It shares only the SmoothSurface evaluation and
+// generator (Bénard 2014 §6.1). It shares only the SmoothSurface evaluation and
 // SurfaceFields (g and the radial curvature) with the workbench: no contour
 // method, no chaining code.
 //

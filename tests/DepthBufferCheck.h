@@ -1,5 +1,5 @@
 #pragma once
-// An independent check of a view graph's visibility (issue 5, "Tests"): the
+// An independent check of a view graph's visibility: the
 // triangle mesh is rasterized by VTK offscreen (OpenGL, under xvfb) at
 // `scale` times the camera's viewport, the depth buffer is read back and
 // converted to eye depth, and every chain of the graph is sampled in image

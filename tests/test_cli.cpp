@@ -272,10 +272,9 @@ private slots:
         QVERIFY(chains.size() > 1);
         // Something passes in front of a contour in 2D on the mesh and
         // interpolated contours. The dense ground truth's contour has no
-        // crossing from such views (test_ground_truth), and since session 8
-        // (crossing-search-rounds, the cusp pushes) the consistent mesh has
-        // none either: no image intersection and no mesh fold left crossing
-        // a drawn curve (before: a few hidden-fold-crossing nodes).
+        // crossing from such views (test_ground_truth), and the consistent
+        // mesh has none either: no image intersection and no mesh fold left
+        // crossing a drawn curve.
         const nlohmann::json& byType = graph["totals"]["nodes_by_type"];
         qInfo("%s: nodes by type %s", qPrintable(method), byType.dump().c_str());
         if (method == "consistent")
@@ -389,7 +388,7 @@ private slots:
         QVERIFY(on.out.contains(QString("%1 simplified away").arg(hidden)));
     }
 
-    // --strict ignores the conflicts the heuristic votes produce by design
+    // --strict ignores the conflicts the heuristic votes are bound to produce
     // (interpolated contours, tutorial §6.2.4): they are reported only.
     void strictIgnoresVoteConflicts() {
         const QString out = freshOutputDir("strict-votes");
@@ -397,7 +396,7 @@ private slots:
                                  "3,0.3,1.2", "--strict", "--json", out + "/r.json"});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         const nlohmann::json graph = readJson(out + "/r.json")["views"][0]["view_graph"];
-        qInfo("interpolated bumpy torus: %d conflicts (by design)",
+        qInfo("interpolated bumpy torus: %d conflicts (expected)",
               graph["totals"]["conflicts"].get<int>());
         QVERIFY(graph["totals"]["conflicts"].get<int>() > 0);
         QVERIFY(r.err.isEmpty());
@@ -521,7 +520,7 @@ private slots:
         // The view graph: one visible closed chain, no node, no conflict
         // (interpolated: the check ray, which ignores the contour's face
         // only, may be hidden by the neighbours the vote ignores; such a
-        // conflict is by design, README "--strict").
+        // conflict is expected, README "--strict").
         const nlohmann::json& graph = view["view_graph"];
         QVERIFY(graph.is_object());
         QCOMPARE(graph["chains"].size(), size_t(1));
@@ -811,11 +810,10 @@ private slots:
         QVERIFY2(r.err.contains("--json and --ply name the same file"), qPrintable(r.err));
     }
 
-    // Batch parity with the workbench's diagnostic snapshot (issue 6 item
-    // 7): --snapshot-dir writes the report, SVG, PLY and session of the run,
-    // and (GUI build, with a display: the suites run under xvfb-run) the two
-    // PNGs drawn by the workbench's views; they agree with each other and
-    // with --json.
+    // Batch parity with the workbench's diagnostic snapshot: --snapshot-dir
+    // writes the report, SVG, PLY and session of the run, and (GUI build,
+    // with a display: the suites run under xvfb-run) the two PNGs drawn by
+    // the workbench's views; they agree with each other and with --json.
     void snapshotDir() {
         const QString out = freshOutputDir("snapshot");
         const QString spot = CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj";

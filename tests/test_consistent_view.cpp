@@ -1,4 +1,4 @@
-// The workbench on the consistent method (issue 4, item 6): the overlay data
+// The workbench on the consistent method: the overlay data
 // of SnapshotToVtk on hand-made fields (exact counts and geometry), then the
 // real window stepping the method through every phase on the spot sample:
 // after each step the stepper shows every counter of the snapshot, its time

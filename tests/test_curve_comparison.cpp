@@ -1,8 +1,9 @@
-// Comparing two methods' drawings in the image (issue 6, item 4): the parts
+// Comparing two methods' drawings in the image: the parts
 // of one side's curves with no curve of the other within the tolerance, on
 // hand-made polylines whose answer is known, on hand-made view graphs, and on
 // real runs (a method against itself differs nowhere; mesh against
-// consistent contours (both on the limit surface) on the torus differs somewhere, and less than all).
+// consistent contours (both on the limit surface) on the torus differs somewhere, and less than
+// all).
 #include "ContourTestSupport.h"
 #include "export/CurveComparison.h"
 #include "pipeline/ViewGraph.h"
@@ -120,7 +121,7 @@ void TestCurveComparison::realRuns() {
     const std::vector<Camera> views = protocolViews(box, 0);
     // The mesh method on the same Catmull-Clark limit surface as the
     // consistent method (its default is the cage itself).
-    ParameterSet limit;
+    Overrides limit;
     limit.set("surface", std::string("catmull-clark"));
     limit.set("tessellation-level", 2);
     int differing = 0;

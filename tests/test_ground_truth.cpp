@@ -1,7 +1,8 @@
 // The dense ground truth of the smooth contour's topology (DenseGroundTruth.h,
-// issue 4 "Validation against an independent answer"): first its own sanity
-// on shapes whose answer is known analytically, then the interpolated method
-// on Catmull-Clark surfaces compared with it, view by view.
+// an answer independent of the methods): first its own sanity on shapes
+// whose answer is known analytically, then the interpolated and consistent
+// methods on Catmull-Clark surfaces compared with it, view by view. The
+// floors and ceilings asserted are in tests/baselines/test_ground_truth.json.
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
 #include "camera/Facing.h"
@@ -265,6 +266,11 @@ constexpr int kComparisonRandomViews = 0;
 // corner that the true contour grazes).
 constexpr double kFaceTolerancePixels = 1.0;
 
+// A floor or ceiling of tests/baselines/test_ground_truth.json, "<shape>: <what>".
+static int measured(const char* shape, const char* what) {
+    return static_cast<int>(baseline("test_ground_truth", std::string(shape) + ": " + what));
+}
+
 void TestGroundTruth::interpolatedAgainstGroundTruth() {
     QFETCH(QString, name);
     QFETCH(int, resolution);
@@ -273,7 +279,7 @@ void TestGroundTruth::interpolatedAgainstGroundTruth() {
     GroundTruthOptions options;
     options.samples = kComparisonSamples;
     const DenseGroundTruth dense(catmullClark(cage), options);
-    ParameterSet parameters;
+    Overrides parameters;
     parameters.set("surface", std::string("catmull-clark"));
     parameters.set("tessellation-level", 8);
     const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
@@ -316,25 +322,20 @@ void TestGroundTruth::consistentAgainstGroundTruth_data() {
     // Cusp counts leaving out the method's pairs closer than one lattice
     // step of the ground truth, where it has no cusp (subLatticeCuspPairs).
     QTest::addColumn<int>("minResolvedCuspsPercent");
-    // Measured (N = 64, 26 + 10 views, session 8 with crossing-search-rounds
-    // 4): loops 100 % on every shape (spot was 31/36 with the paper's single
-    // sign-crossing pass); cusps 100 % on sphere, ellipsoid, torus, bob, 35/36
-    // bumpy torus (view 5: the cusp edge from the odd corner would cross a
-    // third domain face, no chart), 34/36 spot (was 31/36; views 3 and 20:
-    // a pair below the lattice's resolution, see subLatticeCuspPairs; 36/36
-    // with it left out); crossed-face sets within 1 px 36/36 on all but spot
-    // (34/36 with contour-refinement, session 9; 29/36 without, 26/36 in
-    // session 7) (exactly: 36, 34, 36, 28, 11, 26 of 36).
-    QTest::newRow("sphere") << QString("sphere") << 16 << 100 << 100 << 100 << 100;
-    QTest::newRow("ellipsoid") << QString("ellipsoid") << 16 << 100 << 100 << 100 << 100;
-    QTest::newRow("torus") << QString("torus") << 16 << 100 << 100 << 100 << 100;
-    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 100 << 95 << 100 << 95;
-    QTest::newRow("spot") << QString("spot") << 0 << 100 << 94 << 94 << 100;
-    QTest::newRow("bob") << QString("bob") << 0 << 100 << 100 << 100 << 100;
+    for (const auto& [shape, resolution] : {std::pair{"sphere", 16},
+                                            {"ellipsoid", 16},
+                                            {"torus", 16},
+                                            {"bumpy-torus", 24},
+                                            {"spot", 0},
+                                            {"bob", 0}})
+        QTest::newRow(shape) << QString(shape) << resolution
+                             << measured(shape, "views with matching loop counts (%)")
+                             << measured(shape, "views with matching cusp counts (%)")
+                             << measured(shape, "views with crossed-face sets within 1 px (%)")
+                             << measured(shape, "views with matching resolved cusp counts (%)");
 }
 
-// Issue 4, "Validation against an independent answer": the consistent
-// method's contour generator (after every phase) against the dense ground
+// The consistent method's contour generator (after every phase) against the dense ground
 // truth, per view: the number of loops, the domain faces each crosses, and
 // the number of cusps.
 void TestGroundTruth::consistentAgainstGroundTruth() {
@@ -346,7 +347,7 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
     QFETCH(int, minResolvedCuspsPercent);
     const auto cage = comparisonCage(name, resolution);
     const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
-    ParameterSet parameters;
+    Overrides parameters;
     parameters.set("surface", std::string("catmull-clark"));
     const std::vector<Camera> views = protocolViews(cage->boundingBox(), kComparisonRandomViews);
     int sameLoops = 0, sameFaces = 0, sameFacesWithin = 0, sameCusps = 0, truthCusps = 0,
@@ -416,9 +417,8 @@ void TestGroundTruth::consistentAgainstGroundTruth() {
 // contour-refinement (not in the paper): contour edges straying more than
 // contour-refinement-pixels from the smooth contour are split at a root of g
 // beside their middle. On spot, the coarsest sample, the crossed-face sets
-// then match the ground truth within 1 px in more views (measured, N = 64,
-// 26 + 10 views: 29 -> 34 of 36; faces farther than 1 px 7 -> 2), with the
-// same loops and never more inconsistent faces.
+// then match the ground truth within 1 px in more views and fewer faces lie
+// farther than 1 px, with the same loops and never more inconsistent faces.
 void TestGroundTruth::contourRefinementFollowsTheCurve() {
     const auto cage = comparisonCage("spot", 0);
     const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
@@ -429,7 +429,7 @@ void TestGroundTruth::contourRefinementFollowsTheCurve() {
         const GroundTruth truth = dense.compute(views[v]);
         double inconsistent[2] = {0.0, 0.0};
         for (int on = 0; on < 2; ++on) {
-            ParameterSet parameters;
+            Overrides parameters;
             parameters.set("surface", std::string("catmull-clark"));
             if (!on)
                 parameters.set("contour-refinement-pixels", 0.0);
@@ -469,20 +469,18 @@ void TestGroundTruth::contourRefinementFollowsTheCurve() {
 void TestGroundTruth::crossingsAgainstGroundTruth_data() {
     QTest::addColumn<QString>("name");
     QTest::addColumn<int>("resolution");
-    // Floors and ceilings measured on this implementation (Release, 26
-    // views, N = 64), so that a regression fails: views with as many
-    // T-junctions as crossings 26, 20, 13, 22; in all apart by 0 (0
-    // crossings, 0 T-junctions), 7 (128 / 133), 18 (448 / 440), 12
-    // (100 / 112).
+    // Views with as many T-junctions as crossings (a floor), and the
+    // difference of their totals (a ceiling).
     QTest::addColumn<int>("minSameViews");
     QTest::addColumn<int>("maxApart");
-    QTest::newRow("torus") << QString("torus") << 16 << 26 << 0;
-    QTest::newRow("bumpy-torus") << QString("bumpy-torus") << 24 << 18 << 12;
-    QTest::newRow("spot") << QString("spot") << 0 << 11 << 26;
-    QTest::newRow("bob") << QString("bob") << 0 << 20 << 18;
+    for (const auto& [shape, resolution] :
+         {std::pair{"torus", 16}, {"bumpy-torus", 24}, {"spot", 0}, {"bob", 0}})
+        QTest::newRow(shape) << QString(shape) << resolution
+                             << measured(shape, "views with as many T-junctions as crossings")
+                             << measured(shape, "T-junctions and crossings apart in all");
 }
 
-// Issue 5 against the independent answer: the consistent method's
+// The consistent method's
 // T-junctions (a drawn curve in front of another in 2D) per view, against
 // the crossings of the dense ground truth's projected contour
 // (imageCrossings). A view graph with extra crossings draws T-junctions
@@ -499,7 +497,7 @@ void TestGroundTruth::crossingsAgainstGroundTruth() {
     QFETCH(int, maxApart);
     const auto cage = comparisonCage(name, resolution);
     const DenseGroundTruth dense(catmullClark(cage), {kComparisonSamples, 4});
-    ParameterSet parameters;
+    Overrides parameters;
     parameters.set("surface", std::string("catmull-clark"));
     std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
     if (kComparisonSamples != 64)

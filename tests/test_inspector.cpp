@@ -1,4 +1,4 @@
-// Linked selection and the inspector (issue 6, item 3), on the real window:
+// Linked selection and the inspector, on the real window:
 // the spot sample, consistent method, run to the end. A simulated click in
 // the 3D view at the projection (through the view's own camera) of a face's
 // centroid, a corner and an edge midpoint selects that face, vertex or edge

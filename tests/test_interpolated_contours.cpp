@@ -126,7 +126,7 @@ private slots:
         camera.up = Vec3(0, 0, 1);
         camera.projection = orthographic ? Projection::Orthographic : Projection::Perspective;
         camera.orthoHeight = 3.0;
-        ParameterSet p;
+        Overrides p;
         p.set("normal-weighting", weighting.toStdString());
         const Snapshot s = runMethod("interpolated", torus, camera, p);
         int open = 0;
@@ -162,7 +162,7 @@ private slots:
     // circle of points p with p · (eye - p) = 0. Area-weighted normals on a
     // latitude-longitude triangulation are first-order accurate (faces above
     // and below a vertex differ in area), so the error must at least halve
-    // with each doubling of the resolution (measured: 0.17, 0.087, 0.043).
+    // with each doubling of the resolution.
     void sphereContourConvergesToTheTrueCircle() {
         const Vec3 eye(0, 0, 4);
         Camera camera;

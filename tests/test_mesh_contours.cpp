@@ -113,7 +113,7 @@ private slots:
         QCOMPARE(boundaryLoops, 1);
         QVERIFY(s.counter(counters::kBoundaryEdges) > 0);
         QCOMPARE(s.invariantViolations(), 0LL);
-        ParameterSet noBoundaries;
+        Overrides noBoundaries;
         noBoundaries.set("include-boundaries", false);
         const Snapshot t = runMethod("mesh", saddle, lookAt(Vec3(2.5, -3, 1.5)), noBoundaries);
         for (const Polyline& line : *t.curves)
@@ -151,7 +151,7 @@ private slots:
         }
         QCOMPARE(s.counter(counters::kContourEdges), static_cast<double>(expected));
         // Dropping concave edges keeps only convex ones in the chains.
-        ParameterSet drop;
+        Overrides drop;
         drop.set("drop-concave", true);
         const Snapshot t = runMethod("mesh", torus, camera, drop);
         size_t chained = 0;

@@ -1,4 +1,4 @@
-// Comparing two methods in the real main window (issue 6, item 4): the
+// Comparing two methods in the real main window: the
 // Compare-with selector runs a second method on the same mesh and camera;
 // the 2D view shows the difference compareCurves gives for the two
 // snapshots, re-computed for each phase the window steps to; red and blue

@@ -5,8 +5,9 @@
 // post-condition (Debug builds enforce them: a violation throws), publishes
 // a valid mesh (two more faces per inserted vertex), and lowers the
 // inconsistent faces where it helps to a fraction of its input (what the
-// mesh would be without it) below a ceiling. Switched off, it passes the
-// mesh through.
+// mesh would be without it) below a ceiling
+// (tests/baselines/test_patch_search.json). Switched off, it passes the mesh
+// through.
 #include "ContourTestSupport.h"
 #include "pipeline/FieldNames.h"
 
@@ -23,38 +24,25 @@ std::shared_ptr<const PolygonMesh> loadShape(const std::string& name) {
     return sampleOrShape(name, 12);
 }
 
-PhaseRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
-                 bool patchSearch, bool cornerCharts = false, bool radialEnds = false,
-                 bool contourSlide = true, bool newRadialEnds = true, bool newRadialCusps = true,
-                 bool cuspTies = true, int cuspEndDiscs = -1) {
-    const Method& m = *findMethod("consistent");
-    ParameterSet p = ParameterSet::defaults(m.parameters);
-    p.set("patch-search", patchSearch);
-    p.set("chart-vertex-rings", cornerCharts);
-    p.set("patch-radial-ends", radialEnds);
-    p.set("patch-contour-slide", contourSlide);
-    p.set("patch-new-radial-ends", newRadialEnds);
-    p.set("patch-new-radial-cusps", newRadialCusps);
-    p.set("patch-new-radial-cusp-ties", cuspTies);
-    if (cuspEndDiscs >= 0)
-        p.set("cusp-end-retriangulation-faces", cuspEndDiscs);
-    // The cusp retry (last) reruns the method when faces remain: off, so the
-    // final counts show the patch search's own effect.
-    p.set("cusp-retry", false);
-    Runner runner(m, makeInputSnapshot(cage), camera, p);
-    // A phase that fails (a PhaseError) fails the slot, with its message.
-    runner.runToEnd();
-    if (!runner.atEnd())
+// The consistent method with the patch search on and its radial-end moves
+// (patch-radial-ends) off unless `overrides` say otherwise, and the cusp
+// retry off: it reruns the method when faces remain, and the final counts
+// should show the patch search's own effect. A phase that fails (a
+// PhaseError) fails the slot, with its message.
+MethodRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
+                  const Overrides& overrides = {}) {
+    Overrides p{{"patch-search", true}, {"patch-radial-ends", false}, {"cusp-retry", false}};
+    for (const Overrides::Entry& e : overrides.entries())
+        p.set(e.name, e.value);
+    MethodRun r = run("consistent", cage, camera, p);
+    if (r.snapshots.size() != findMethod("consistent")->phases.size() + 1)
         throw std::runtime_error("the method stopped after phase " +
-                                 std::to_string(runner.completedPhases()));
-    PhaseRun out;
-    for (int i = 0; i <= runner.completedPhases(); ++i)
-        out.snapshots.push_back(runner.snapshot(i));
-    return out;
+                                 std::to_string(r.snapshots.size() - 1));
+    return r;
 }
 
 // The first post-condition a phase of the run violates, or empty.
-QString firstViolation(const PhaseRun& run) {
+QString firstViolation(const MethodRun& run) {
     for (const Snapshot& s : run.snapshots)
         for (const InvariantCheck& c : s.invariants)
             if (c.violations != 0)
@@ -85,19 +73,11 @@ private slots:
         // of those before it, summed over the 26 views (Release only).
         // Without the phase the fraction is 1.
         QTest::addColumn<double>("ceiling");
-        // Measured (Release, 26 views, before -> after the phase): spot
-        // 184 -> 92 (0.50), bob 152 -> 38 (0.25), bumpy torus 40 -> 20
-        // (0.50), torus 16 -> 12 (16 -> 0 with patch-radial-ends: see
-        // radialEndsClearTheTorus). Session 8 (crossing-search-rounds, the
-        // cusp pushes, new radial ends): spot 191 -> 85 (0.45), bob 145 -> 31
-        // (0.21), bumpy torus 33 -> 16 (0.48), torus 4 -> 4: the earlier
-        // phases now leave the torus only faces that need patch-radial-ends
-        // (off here; radialEndsClearTheTorus), so its row checks that no
-        // view gets worse.
-        QTest::addRow("spot") << QString("spot") << 0.5;
-        QTest::addRow("bob") << QString("bob") << 0.25;
-        QTest::addRow("bumpy-torus") << QString("bumpy-torus") << 0.55;
-        QTest::addRow("torus") << QString("torus") << 1.0;
+        for (const char* shape : {"spot", "bob", "bumpy-torus", "torus"})
+            QTest::addRow("%s", shape)
+                << QString(shape)
+                << baseline("test_patch_search",
+                            std::string(shape) + ": inconsistent faces after / before the phase");
     }
 
     void neverWorseOverTheProtocol() {
@@ -107,11 +87,11 @@ private slots:
         const std::vector<Camera> cameras = views(*cage);
         long long before = 0, after = 0, inserted = 0, relocated = 0, finalFaces = 0;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            const PhaseRun run = runView(cage, cameras[v], true);
+            const MethodRun run = runView(cage, cameras[v]);
             const QString violation = firstViolation(run);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = run.after("patch-search");
-            const Snapshot& previous = run.after("vertex-removal");
+            const Snapshot& s = run.phase("patch-search");
+            const Snapshot& previous = run.phase("vertex-removal");
             const double in = s.counter(counters::kInconsistentFacesBefore, -1.0);
             const double out = s.counter(counters::kInconsistentFaces, -1.0);
             QVERIFY(in >= 0.0 && out >= 0.0);
@@ -174,15 +154,15 @@ private slots:
         const std::vector<Camera> cameras = views(*cage);
         long long before = 0, after = 0, skipped = 0;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            PhaseRun run;
+            MethodRun run;
             try {
-                run = runView(cage, cameras[v], true, cornerCharts);
+                run = runView(cage, cameras[v], {{"chart-vertex-rings", cornerCharts}});
             } catch (const std::exception& e) {
                 QFAIL(qPrintable(QString("view %1: %2").arg(v).arg(e.what())));
             }
             const QString violation = firstViolation(run);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = run.after("patch-search");
+            const Snapshot& s = run.phase("patch-search");
             const double in = s.counter(counters::kInconsistentFacesBefore, -1.0);
             const double out = s.counter(counters::kInconsistentFaces, -1.0);
             QVERIFY(in >= 0.0 && out >= 0.0);
@@ -202,17 +182,17 @@ private slots:
     // With patch-radial-ends, the torus's last faces (F-F-F faces beyond a
     // cusp's radial end, two corners radial ends) go: a radial end slides
     // along its radial plane, its star re-triangulated, its radial edge kept
-    // (the post-condition |h_p(r)| <= radial-root-tolerance holds).
-    // Measured (Release, 26 views): final inconsistent faces 12 -> 0.
+    // (the post-condition |h_p(r)| <= radial-root-tolerance holds): no
+    // face stays inconsistent on any view.
     void radialEndsClearTheTorus() {
         const std::shared_ptr<const PolygonMesh> cage = loadShape("torus");
         const std::vector<Camera> cameras = views(*cage);
         long long relocated = 0, finalFaces = 0;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            const PhaseRun run = runView(cage, cameras[v], true, false, true);
+            const MethodRun run = runView(cage, cameras[v], {{"patch-radial-ends", true}});
             const QString violation = firstViolation(run);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = run.after("patch-search");
+            const Snapshot& s = run.phase("patch-search");
             QVERIFY(s.counter(counters::kInconsistentFaces) <=
                     s.counter(counters::kInconsistentFacesBefore));
             relocated += static_cast<long long>(s.counter(counters::kVerticesRelocated));
@@ -230,10 +210,7 @@ private slots:
     // stay (same contour edges before and after the phase), every C vertex
     // keeps |g| <= root-tolerance (a post-condition, enforced in Debug), no
     // view ends with more inconsistent faces than without the slide, and
-    // some end with fewer. Measured (Release, 26 views, final inconsistent
-    // faces without -> with, normal-wiggle pairs on): spot 35 -> 33 here;
-    // bench_consistent bob_control 19 -> 17, bigguy 184 -> 182, killeroo
-    // 685 -> 678, no view worse. Spot alone keeps the suite's time.
+    // some end with fewer. Spot alone keeps the suite's time.
     void contourSlideRemovesFaces() {
         const QString shapeName = "spot";
         const std::shared_ptr<const PolygonMesh> cage = loadShape(shapeName.toStdString());
@@ -255,18 +232,21 @@ private slots:
         long long slid = 0;
         OnOffCounts tally;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            // The slide alone, as when the figures were measured: the discs
-            // re-triangulated at cusps' radial ends after the normal wiggle
-            // (session 10) fix the same faces either way.
-            const PhaseRun off =
-                runView(cage, cameras[v], true, false, true, false, true, true, true, 0);
-            const PhaseRun on =
-                runView(cage, cameras[v], true, false, true, true, true, true, true, 0);
+            // The slide alone: the discs re-triangulated at cusps' radial ends
+            // after the normal wiggle (cusp-end-retriangulation-faces) fix the
+            // same faces either way.
+            const MethodRun off = runView(cage, cameras[v],
+                                          {{"patch-radial-ends", true},
+                                           {"patch-contour-slide", false},
+                                           {"cusp-end-retriangulation-faces", 0}});
+            const MethodRun on =
+                runView(cage, cameras[v],
+                        {{"patch-radial-ends", true}, {"cusp-end-retriangulation-faces", 0}});
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = on.after("patch-search");
-            QCOMPARE(contourEdges(s), contourEdges(on.after("vertex-removal")));
-            QCOMPARE(off.after("patch-search").counter(counters::kCVerticesSlidAlongTheContour),
+            const Snapshot& s = on.phase("patch-search");
+            QCOMPARE(contourEdges(s), contourEdges(on.phase("vertex-removal")));
+            QCOMPARE(off.phase("patch-search").counter(counters::kCVerticesSlidAlongTheContour),
                      0.0);
             slid += static_cast<long long>(s.counter(counters::kCVerticesSlidAlongTheContour));
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
@@ -286,10 +266,7 @@ private slots:
     // tagged radial (the radial post-conditions, |h_p(r)| within
     // radial-root-tolerance, enforced in Debug). No view ends with more
     // inconsistent faces than without it, some with fewer, and the radial
-    // edges grow by the counter. Measured (Release, 26 views, final
-    // inconsistent faces without -> with): spot 25 -> 24 (view 5: 3 -> 2),
-    // 3 new radial edges; bench_consistent bigguy 156 -> 149, killeroo
-    // 501 -> 492, no view worse.
+    // edges grow by the counter (spot view 5 is one that gains).
     void newRadialEndsRemoveFaces() {
         const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
         std::vector<Camera> cameras = views(*cage);
@@ -304,16 +281,17 @@ private slots:
         long long added = 0;
         OnOffCounts tally;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            const PhaseRun off = runView(cage, cameras[v], true, false, true, true, false);
-            const PhaseRun on = runView(cage, cameras[v], true, false, true, true, true);
+            const MethodRun off = runView(
+                cage, cameras[v], {{"patch-radial-ends", true}, {"patch-new-radial-ends", false}});
+            const MethodRun on = runView(cage, cameras[v], {{"patch-radial-ends", true}});
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = on.after("patch-search");
+            const Snapshot& s = on.phase("patch-search");
             const double n = s.counter(counters::kNewRadialEdges, -1.0);
             QVERIFY(n >= 0.0);
-            QCOMPARE(off.after("patch-search").counter(counters::kNewRadialEdges), 0.0);
+            QCOMPARE(off.phase("patch-search").counter(counters::kNewRadialEdges), 0.0);
             QCOMPARE(static_cast<double>(radialEdges(s)),
-                     static_cast<double>(radialEdges(on.after("vertex-removal"))) + n);
+                     static_cast<double>(radialEdges(on.phase("vertex-removal"))) + n);
             added += static_cast<long long>(n);
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
             QVERIFY2(worse.empty(), worse.c_str());
@@ -328,8 +306,7 @@ private slots:
     // With patch-new-radial-cusps, a cusp without radial edges (radial edge
     // insertion found no outside region, Fig. 18e) may get one in the patch
     // search, its valence-4 fan (Fig. 18d) re-triangulated around the new
-    // radial end. Bigguy views 4 and 11 (bench_consistent, 26 views: 49 ->
-    // 47, no view worse): fewer final inconsistent faces with it, radial
+    // radial end. Bigguy views 4 and 11: fewer final inconsistent faces with it, radial
     // edges at cusps added, no post-condition violated (Debug: the cusp
     // valence and radial-edge checks enforced).
     void newRadialCuspsRemoveFaces() {
@@ -345,12 +322,13 @@ private slots:
         double added = 0.0;
         OnOffCounts tally;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            const PhaseRun off = runView(cage, cameras[v], true, false, true, true, true, false);
-            const PhaseRun on = runView(cage, cameras[v], true, false, true, true, true, true);
+            const MethodRun off = runView(
+                cage, cameras[v], {{"patch-radial-ends", true}, {"patch-new-radial-cusps", false}});
+            const MethodRun on = runView(cage, cameras[v], {{"patch-radial-ends", true}});
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            QCOMPARE(off.after("patch-search").counter(counters::kNewRadialEdgesAtCusps), 0.0);
-            added += on.after("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
+            QCOMPARE(off.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps), 0.0);
+            added += on.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
             QVERIFY2(worse.empty(), worse.c_str());
         }
@@ -367,7 +345,7 @@ private slots:
     // F corner (the F side must cover 372 degrees around the cusp's image, two
     // faces cannot): with the tie-break both get a radial edge and the later
     // moves clear the view (final inconsistent faces 2 -> 0); no spot view is
-    // worse (bench_consistent, 26 views: spot 10 -> 8, bigguy view 8 2 -> 3).
+    // worse.
     void newRadialCuspTiesClearSpotView16() {
         const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
         const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
@@ -379,14 +357,14 @@ private slots:
         OnOffCounts tally;
         double ties = 0.0, view16 = -1.0;
         for (size_t v = 0; v < cameras.size(); ++v) {
-            const PhaseRun off =
-                runView(cage, cameras[v], true, false, true, true, true, true, false);
-            const PhaseRun on =
-                runView(cage, cameras[v], true, false, true, true, true, true, true);
+            const MethodRun off =
+                runView(cage, cameras[v],
+                        {{"patch-radial-ends", true}, {"patch-new-radial-cusp-ties", false}});
+            const MethodRun on = runView(cage, cameras[v], {{"patch-radial-ends", true}});
             const QString violation = firstViolation(on);
             QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            ties += on.after("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0) -
-                    off.after("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
+            ties += on.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0) -
+                    off.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
             const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
             QVERIFY2(worse.empty(), worse.c_str());
             if (cameras.size() == 1 || v == 16)
@@ -403,9 +381,9 @@ private slots:
     // Off, the phase passes the mesh through and says so.
     void offPassesThrough() {
         const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
-        const PhaseRun run = runView(cage, views(*cage)[2], false);
-        const Snapshot& s = run.after("patch-search");
-        const Snapshot& previous = run.after("vertex-removal");
+        const MethodRun run = runView(cage, views(*cage)[2], {{"patch-search", false}});
+        const Snapshot& s = run.phase("patch-search");
+        const Snapshot& previous = run.phase("vertex-removal");
         QVERIFY(previous.counter(counters::kInconsistentFaces) > 0.0);
         QCOMPARE(s.counter(counters::kInconsistentFaces),
                  previous.counter(counters::kInconsistentFaces));

@@ -10,7 +10,7 @@ using namespace contour;
 class TestPredicates : public QObject {
     Q_OBJECT
 private slots:
-    void frontSideSigns() {
+    void frontFacingSigns() {
         const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0); // normal +z
         QCOMPARE(frontSide(a, b, c, Vec3(0.2, 0.2, 1)), 1);
         QCOMPARE(frontSide(a, b, c, Vec3(0.2, 0.2, -1)), -1);

@@ -1,4 +1,4 @@
-// Colouring the 3D view by a snapshot's scalar fields (issue 3, item 6): the
+// Colouring the 3D view by a snapshot's scalar fields: the
 // symmetric range and the diverging colour map, the list of colourable
 // fields, a standalone SceneView3D on hand-made vertex and face fields (with
 // NaN), and the real workbench window on the Catmull-Clark limit surface of

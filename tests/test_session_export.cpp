@@ -1,6 +1,5 @@
-// Sessions and diagnostic snapshots of the real main window (issue 6 items
-// 5-6). On the spot sample with the consistent method stepped phase by phase
-// up to its visibility phase (one parameter changed, display toggles
+// Sessions and diagnostic snapshots of the real main window. On the spot sample with the consistent
+// method stepped phase by phase up to its visibility phase (one parameter changed, display toggles
 // changed): File › Export diagnostic snapshot writes exactly its six files,
 // each PNG decodes and shows more than the background, the SVG parses and
 // holds the view graph's chains, the JSON report has every field (method,

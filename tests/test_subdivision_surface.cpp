@@ -1,6 +1,7 @@
 // Catmull-Clark and Loop limit surfaces (SubdivisionSurface, OpenSubdiv):
 // first and second derivatives against central finite differences (the
-// regression for the two EvaluateBasis slips, DESIGN.md traps), Catmull-Clark
+// regression for two slips that are easy with OpenSubdiv's EvaluateBasis),
+// Catmull-Clark
 // on a regular grid against an independent bicubic B-spline, agreement across
 // every shared domain edge, a convex Loop surface without sign flips of the
 // second fundamental form, transferAcrossEdge round trips, creases from OBJ

@@ -371,7 +371,8 @@ private slots:
         }
     }
 
-    // DESIGN.md, facing: g > 0 on the hemisphere nearer the camera.
+    // The facing convention (Bénard 2014 eq. 1): g > 0 on the hemisphere
+    // nearer the camera.
     void nearHemisphereIsFront() {
         const ProjectedSphere sphere(cube(), 1.0, Vec3::Zero());
         std::mt19937 rng(3);
@@ -650,7 +651,7 @@ private slots:
     // Interpolated contours on the tessellated analytic sphere are one closed
     // loop, with exact normals, and converge to the true contour generator
     // (for a unit sphere and an eye e, the circle x · e = 1 on the sphere) at
-    // second order: measured 0.116, 0.049, 0.015, 0.0037 at levels 2, 4, 8, 16.
+    // second order.
     void interpolatedContoursOnAnalyticSphereConverge() {
         const auto sphere = std::make_shared<const ProjectedSphere>(cube(), 1.0, Vec3::Zero());
         const Vec3 eye(0.3, -0.5, 4.0);
@@ -796,9 +797,7 @@ private slots:
         else
             mesh = std::make_shared<const PolygonMesh>(
                 readMesh(CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj"));
-        ParameterSet p;
-        p.set("surface", surface.toStdString());
-        p.set("tessellation-level", level);
+        const Overrides p{{"surface", surface.toStdString()}, {"tessellation-level", level}};
         for (const Camera& camera : protocolViews(mesh->boundingBox(), 0)) {
             const Snapshot s = runMethod(method.toStdString(), mesh, camera, p);
             QCOMPARE(s.invariantViolations(), 0LL);
@@ -815,11 +814,10 @@ private slots:
 
     // On a sphere-like cage (Catmull-Clark of a cube, and Loop of an
     // octahedron), the interpolated contour approaches the smooth contour
-    // generator as the level increases. Measured (worst distance, levels 2, 4,
-    // 8, 16): Catmull-Clark 0.048, 0.012, 0.0029, 0.00075 (second order);
-    // Loop 0.090, 0.037, 0.011, 0.0043, slower because the worst points sit
-    // next to the octahedron's valence-4 (extraordinary) vertices, where the
-    // Loop limit surface is less smooth and its end caps approximate.
+    // generator as the level increases: at second order for Catmull-Clark,
+    // slower for Loop, whose worst points sit next to the octahedron's
+    // valence-4 (extraordinary) vertices, where the Loop limit surface is
+    // less smooth and its end caps approximate.
     void interpolatedContoursConvergeOnLimitSurfaces_data() {
         QTest::addColumn<bool>("loop");
         QTest::newRow("catmull-clark cube") << false;
@@ -830,8 +828,7 @@ private slots:
         const auto cage = std::make_shared<const PolygonMesh>(loop ? octahedron() : cube());
         const auto surface =
             cachedSmoothSurface(cage, loop ? SurfaceKind::Loop : SurfaceKind::CatmullClark).surface;
-        ParameterSet p;
-        p.set("surface", std::string(loop ? "loop" : "catmull-clark"));
+        Overrides p{{"surface", loop ? "loop" : "catmull-clark"}};
         const Camera camera = perspectiveAt(Vec3(0.7, -1.1, 4.5), Vec3::Zero());
         double previous = 1.0, first = 0.0;
         for (int level : {2, 4, 8, 16}) {

@@ -1,7 +1,7 @@
-// Surface–surface intersection curves (issue 5 item 2): exact triangle pairs
+// Surface–surface intersection curves: exact triangle pairs
 // from CGAL, chained through mesh edges/vertices into polylines.
-#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshReader.h"
 #include "visibility/SurfaceIntersections.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -79,7 +79,7 @@ using FacePair = std::pair<Index, Index>;
 // (its own box intersection and triangle tests) on a Surface_mesh with the
 // same faces in the same order, keeping the pairs that share no vertex.
 // `adjacent` counts the pairs PMP reports between faces sharing a vertex
-// (they cross beyond it), which surfaceIntersectionCurves skips by design.
+// (they cross beyond it), which surfaceIntersectionCurves skips on purpose.
 std::set<FacePair> oraclePairs(const TriangleMesh& mesh, long long& adjacent) {
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Mesh = CGAL::Surface_mesh<K::Point_3>;

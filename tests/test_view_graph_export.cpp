@@ -1,4 +1,4 @@
-// The view graph in the exporters (issue 5 item 6): the SVG layers (visible,
+// The view graph in the exporters: the SVG layers (visible,
 // hidden dashed, simplified, node markers per type) and the JSON report's
 // "view_graph", on a hand-made graph whose every value is known.
 #include "export/JsonReport.h"

@@ -1,4 +1,4 @@
-// The workbench's view graph display (issue 5, item 7). First a hand-made
+// The workbench's view graph display. First a hand-made
 // view graph on a sphere, in a lone 2D and 3D view: as many solid, dashed and
 // faint chains and node glyphs as the graph has in each state, and the
 // grabbed images change with the toggles (hidden-QI purple pixels only while

@@ -1,4 +1,4 @@
-// The visibility core (issue 5): the ray caster, the image-space sweep, the
+// The visibility core: the ray caster, the image-space sweep, the
 // view graph and QI propagation (tutorial ch. 4, app. B–C; Bénard 2014 §8)
 // on procedural shapes with the mesh and consistent methods: a sphere is one
 // visible loop; the far one of two spheres is cut by two T-junctions with a
@@ -137,20 +137,9 @@ constexpr size_t kViewStride = 1;
 constexpr size_t kViewStride = 5;
 #endif
 
-PhaseRun runAll(const std::string& method, std::shared_ptr<const PolygonMesh> cage,
-                const Camera& camera, const ParameterSet& extra = {}) {
-    const Method& m = *findMethod(method);
-    ParameterSet p = ParameterSet::defaults(m.parameters);
-    if (method == "consistent")
-        p.set("surface", std::string("catmull-clark"));
-    for (const auto& [name, value] : extra.values())
-        p.set(name, value);
-    Runner runner(m, makeInputSnapshot(std::move(cage)), camera, p);
-    runner.runToEnd();
-    PhaseRun r;
-    for (int i = 0; i <= runner.completedPhases(); ++i)
-        r.snapshots.push_back(runner.snapshot(i));
-    return r;
+// The method's defaults; the consistent method on the Catmull-Clark surface.
+Overrides defaultsOf(const std::string& method) {
+    return method == "consistent" ? Overrides{{"surface", "catmull-clark"}} : Overrides{};
 }
 
 Camera lookAt(const Vec3& eye, const Vec3& target) {
@@ -322,9 +311,10 @@ private slots:
     void sphere() {
         QFETCH(QString, method);
         const auto cage = shape("sphere", 16);
-        const PhaseRun run =
-            runAll(method.toStdString(), cage, lookAt(Vec3(0.3, 0.8, 4.5), Vec3::Zero()));
-        const Snapshot& s = run.after("visibility");
+        const MethodRun r =
+            run(method.toStdString(), cage, lookAt(Vec3(0.3, 0.8, 4.5), Vec3::Zero()),
+                defaultsOf(method.toStdString()));
+        const Snapshot& s = r.phase("visibility");
         verifyInvariants(s);
         QVERIFY(s.viewGraph);
         const ViewGraph& g = *s.viewGraph;
@@ -351,9 +341,10 @@ private slots:
     void twoSpheres() {
         QFETCH(QString, method);
         const auto cage = shape("two-spheres", 16);
-        const PhaseRun run =
-            runAll(method.toStdString(), cage, lookAt(Vec3(2, 0.2, 8), Vec3(0, 0, -1.5)));
-        const Snapshot& s = run.after("visibility");
+        const MethodRun r =
+            run(method.toStdString(), cage, lookAt(Vec3(2, 0.2, 8), Vec3(0, 0, -1.5)),
+                defaultsOf(method.toStdString()));
+        const Snapshot& s = r.phase("visibility");
         verifyInvariants(s);
         const ViewGraph& g = *s.viewGraph;
         verifyGraph(g, method == "mesh");
@@ -395,9 +386,9 @@ private slots:
     void grazingTorus() {
         QFETCH(QString, method);
         const auto cage = shape("torus", 24);
-        const PhaseRun run =
-            runAll(method.toStdString(), cage, lookAt(Vec3(6, 1, 1.4), Vec3::Zero()));
-        const Snapshot& s = run.after("visibility");
+        const MethodRun r = run(method.toStdString(), cage, lookAt(Vec3(6, 1, 1.4), Vec3::Zero()),
+                                defaultsOf(method.toStdString()));
+        const Snapshot& s = r.phase("visibility");
         verifyInvariants(s);
         const ViewGraph& g = *s.viewGraph;
         verifyGraph(g, method == "mesh");
@@ -469,8 +460,9 @@ private slots:
         double conflicts = 0, seconds = 0, rays = 0, tJunctions = 0, folds = 0, below = 0;
         int runs = 0;
         for (size_t v = 0; v < views.size(); v += kViewStride) {
-            const PhaseRun run = runAll(method.toStdString(), cage, views[v]);
-            const Snapshot& s = run.after("visibility");
+            const MethodRun r =
+                run(method.toStdString(), cage, views[v], defaultsOf(method.toStdString()));
+            const Snapshot& s = r.phase("visibility");
             verifyInvariants(s);
             verifyGraph(*s.viewGraph, method == "mesh");
             if (s.counter(counters::kRayCheckConflicts) != 0.0) {
@@ -496,14 +488,12 @@ private slots:
 
     // The parameter turns the phase into a pass-through that says so.
     void visibilityOff() {
-        ParameterSet p;
-        p.set("visibility", false);
-        const PhaseRun run =
-            runAll("mesh", shape("sphere", 12), lookAt(Vec3(0, 1, 5), Vec3::Zero()), p);
-        const Snapshot& s = run.after("visibility");
+        const MethodRun r = run("mesh", shape("sphere", 12), lookAt(Vec3(0, 1, 5), Vec3::Zero()),
+                                {{"visibility", false}});
+        const Snapshot& s = r.phase("visibility");
         QVERIFY(!s.viewGraph);
         QVERIFY(!s.notes.empty());
-        QCOMPARE(s.curves->size(), run.after("chaining").curves->size());
+        QCOMPARE(s.curves->size(), r.phase("chaining").curves->size());
     }
 };
 

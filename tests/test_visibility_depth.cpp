@@ -1,4 +1,4 @@
-// Visibility against an independent depth buffer (issue 5, "Tests"): the
+// Visibility against an independent depth buffer: the
 // view graph of the "visibility" phase is compared, along every chain, with
 // the mesh's depth buffer rendered by VTK offscreen at 2× the viewport
 // (DepthBufferCheck.h says how, and why the comparison takes the farthest
@@ -41,8 +41,8 @@ constexpr size_t kViewStride = 1;
 constexpr size_t kViewStride = 3;
 #endif
 
-// Issue 5: the share of the length the graph calls visible that the depth
-// buffer confirms.
+// The share of the length the graph calls visible that the depth buffer
+// must confirm.
 constexpr double kRequiredVisibleAgreement = 0.995;
 constexpr double kMinimumBufferVisibleCovered = 0.95;
 
@@ -51,16 +51,6 @@ std::shared_ptr<const PolygonMesh> sample(const char* file) {
     if (!std::filesystem::exists(path))
         return nullptr;
     return std::make_shared<const PolygonMesh>(readMesh(path));
-}
-
-// Every snapshot of a run of `method` with its default parameters.
-PhaseRun runPhases(const std::string& method, std::shared_ptr<const PolygonMesh> cage,
-                   const Camera& camera) {
-    const Method& m = *findMethod(method);
-    Runner runner(m, makeInputSnapshot(std::move(cage)), camera,
-                  ParameterSet::defaults(m.parameters));
-    runner.runToEnd();
-    return PhaseRun{runner.snapshots()};
 }
 
 // A chain through the given points (closed: the first point repeated last).
@@ -216,8 +206,8 @@ private slots:
         camera.target = Vec3(0, 0, 0);
         camera.up = up;
         camera.viewport = Viewport{800, 600};
-        const PhaseRun run = runPhases("mesh", cage, camera);
-        const Snapshot& s = run.after("visibility");
+        const MethodRun r = run("mesh", cage, camera);
+        const Snapshot& s = r.phase("visibility");
         QVERIFY2(s.viewGraph, "the visibility phase set no view graph");
         const DepthImage image = renderDepth(*s.mesh, camera, 2);
         const DepthAgreement right = compareWithDepth(*s.viewGraph, image);
@@ -263,9 +253,9 @@ private slots:
         double methodSeconds = 0.0, checkSeconds = 0.0;
         for (size_t v = 0; v < views.size(); v += kViewStride) {
             const auto t0 = std::chrono::steady_clock::now();
-            const PhaseRun run = runPhases(method.toStdString(), cage, views[v]);
+            const MethodRun r = run(method.toStdString(), cage, views[v]);
             const auto t1 = std::chrono::steady_clock::now();
-            const Snapshot& s = run.after("visibility");
+            const Snapshot& s = r.phase("visibility");
             QVERIFY2(s.viewGraph, "the visibility phase set no view graph");
             const DepthImage image = renderDepth(*s.mesh, views[v], DepthCheckOptions{}.scale);
             const DepthAgreement a = compareWithDepth(*s.viewGraph, image);

@@ -358,7 +358,7 @@ std::string cell(std::optional<double> x, const char* format = "%.6g") {
 struct MeshSummary {
     std::string name;
     int views = 0, completed = 0, zeroViolation = 0, consistent = 0;
-    int aboveTarget = 0; // completed views above 0.05 % inconsistent (issue 4)
+    int aboveTarget = 0; // completed views above 0.05 % inconsistent faces
     long long violations = 0;
     std::vector<long long> classes = std::vector<long long>(kClassCount, 0);
     Mean inputFaces, outputFaces, runtime, phases, checks;

@@ -1,4 +1,4 @@
-// bench_visibility: the figures issue 5 asks for. A benchmark: it prints
+// bench_visibility: the visibility phase's figures. A benchmark: it prints
 // figures and asserts nothing.
 //
 //   bench_visibility [--meshes-dir DIR] [--mesh NAME] [--views N]
@@ -37,7 +37,7 @@
 // with the mesh's depth buffer rendered by VTK offscreen at 2× the viewport
 // (tests/DepthBufferCheck.h). Needs a display: run under `xvfb-run -a`.
 // Columns: visible = of the length the graph calls visible, the share the
-// buffer confirms (the figure issue 5 asks >= 99.5 % of); hidden = the same
+// buffer confirms (test_visibility_depth requires >= 99.5 %); hidden = the same
 // for the hidden length; drawn = of the length the buffer sees, the share
 // the graph calls visible; covered = the same counting hidden chains within
 // 1 px of a visible one in the image (drawn anyway); excluded = length within 1 px of a node or
@@ -462,7 +462,7 @@ std::string num(double v, int precision = 4) {
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Visibility (issue 5): the visibility phase's time, ray tests and graph on a "
+    CLI::App app{"Visibility: the visibility phase's time, ray tests and graph on a "
                  "large consistent mesh, and the depth-buffer agreement of the three methods on "
                  "spot and bob."};
     std::string meshesDir = CONTOUR_SHARED_DIR "/meshes";

@@ -1,5 +1,5 @@
-// bench_workbench: the two figures issue 6 asks for, measured on the real
-// main window. A benchmark: it prints figures and asserts nothing.
+// bench_workbench: the workbench's two interactive figures, measured on the
+// real main window. A benchmark: it prints figures and asserts nothing.
 //
 //   xvfb-run -a -s "-screen 0 1920x1200x24" bench_workbench
 //       [--meshes-dir DIR] [--orbit-mesh NAME] [--orbit-method M] [--frames N]
@@ -124,7 +124,7 @@ bool openAndRun(MainWindow& window, const std::filesystem::path& path, const QSt
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"The workbench (issue 6): orbit frame rate of the 3D view with overlays on a "
+    CLI::App app{"The workbench: orbit frame rate of the 3D view with overlays on a "
                  "large mesh, and the time from a phase step to updated views."};
     std::string meshesDir = CONTOUR_SHARED_DIR "/meshes";
     std::string orbitMesh = "controlmesh";
