@@ -9,6 +9,7 @@
 #include "ContourTestSupport.h"
 #include "DenseGroundTruth.h"
 #include "contours/consistent/mesh/ConsistentMesh.h"
+#include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
 #include "contours/consistent/numerics/JointRootSearch.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
