@@ -1,5 +1,5 @@
 #pragma once
-// The bridge between a QOpenGLWidget and VTK (DESIGN.md, traps): Debian's VTK
+// The bridge between a QOpenGLWidget and VTK (docs/dev/debian-traps.md): Debian's VTK
 // Qt module is built for Qt 5, so this widget drives a
 // vtkGenericOpenGLRenderWindow in its own GL context and forwards Qt's mouse
 // and key events to a vtkGenericRenderWindowInteractor (trackball camera).

@@ -73,7 +73,7 @@ public:
     // A camera looking at the whole box from `direction` (eye at centre +
     // |diagonal| * direction), with the given viewport.
     static Camera framing(const BoundingBox& box, const Vec3& direction, const Viewport& viewport);
-    // The 26-view protocol (DESIGN.md): for i, j, k in {0, 1, 2} except
+    // The 26-view protocol (docs/dev/benchmarks.md): for i, j, k in {0, 1, 2} except
     // (1, 1, 1), p = min + (i, j, k)/2 (max - min), camera at
     // centre + |diagonal| normalize(p - centre), looking at the centre.
     static std::vector<Camera> views26(const BoundingBox& box, const Viewport& viewport);

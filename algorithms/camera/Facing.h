@@ -1,5 +1,5 @@
 #pragma once
-// The single definition of facing in the code base (DESIGN.md conventions,
+// The single definition of facing in the code base (docs/dev/conventions.md,
 // Bénard 2014 §3): g(p) = (c - p) · n with outward normals; g > 0 is
 // front-facing. The tutorial flips this sign in §3.7.2, §6.2.1 and §7.2
 // (notes, errata 1); do not copy its formulas' signs.

@@ -1,6 +1,6 @@
 #pragma once
 // Writes a whole file or nothing: the content goes to `path.tmp`, which is
-// renamed to `path` once complete (DESIGN.md: no output file is ever left
+// renamed to `path` once complete (docs/dev/conventions.md: no output file is ever left
 // half-written). Every writer (meshes, cameras, exports) goes through this.
 #include <string>
 #include <string_view>

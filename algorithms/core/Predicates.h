@@ -1,5 +1,5 @@
 #pragma once
-// Exact geometric predicates that decide topology (DESIGN.md conventions).
+// Exact geometric predicates that decide topology (docs/dev/conventions.md).
 // Backed by CGAL's filtered exact predicates; kept in one .cpp so CGAL's
 // templates compile once.
 #include "core/Types.h"

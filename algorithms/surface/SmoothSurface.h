@@ -1,6 +1,6 @@
 #pragma once
 // A smooth surface over a parameter domain made of triangles and quads
-// (DESIGN.md, surface/). Every smooth surface of the workbench — Catmull-Clark
+// (docs/dev/architecture.md). Every smooth surface of the workbench — Catmull-Clark
 // and Loop limit surfaces, vertex-normal patches — implements this, and
 // everything above (fields, tessellation, consistent contours) uses only it.
 //

@@ -11,7 +11,7 @@
 namespace contour {
 
 // Catmull-Clark for a cage with any face that is not a triangle (quad meshes
-// and mixed meshes), Loop for an all-triangle cage (DESIGN.md, issue 3).
+// and mixed meshes), Loop for an all-triangle cage.
 SurfaceKind automaticSurfaceKind(const PolygonMesh& cage);
 
 // "catmull-clark", "loop", "vertex-normal-patches" (toString(SurfaceKind)),

@@ -1,6 +1,6 @@
 #pragma once
 // Catmull-Clark and Loop limit surfaces, evaluated exactly through
-// OpenSubdiv's Far API (DESIGN.md, surface/): a topology refiner adaptively
+// OpenSubdiv's Far API (docs/dev/architecture.md): a topology refiner adaptively
 // refined around extraordinary vertices and creases, a patch table of
 // B-spline (regular), box-spline (Loop) and end-cap patches, and a patch map
 // from ptex coordinates to patches.
@@ -14,7 +14,7 @@
 // Domain vertices sit at their limit positions.
 //
 // Evaluation corrects two slips of Far::PatchTable::EvaluateBasis in
-// OpenSubdiv 3.5 (DESIGN.md, traps), checked by finite differences in
+// OpenSubdiv 3.5 (docs/dev/debian-traps.md), checked by finite differences in
 // tests/test_subdivision_surface.cpp:
 //   (1) on a 180-degree rotated triangular sub-patch (Loop), the second
 //       derivative weights come out with the wrong sign;

@@ -242,7 +242,7 @@ Index mateAt(const ViewNode& node, Index chain) {
 // §8.4 rule (a), Fig. 22a: an ambiguous chain joining two cusps whose
 // outgoing chains are both visible is visible, since at least one of the
 // cusps is spurious. Extension: the near-face test often flips several times
-// around one real cusp (notes §3.2), leaving a run of short ambiguous chains
+// around one real cusp (Bénard 2014 §8.1, footnote 3), leaving a run of short ambiguous chains
 // joined at cusps; such a run is treated as one chain, visible when the
 // chains leaving it at both ends are. Returns the run, or an empty vector.
 std::vector<Index> cuspRun(const ViewGraph& g, const std::vector<ChainVote>& votes, Index ci) {

@@ -1,6 +1,5 @@
 #pragma once
-// Surface–surface intersection curves of a triangle mesh (issue 5 item 2;
-// tutorial §4.2, "surface intersections" as a third curve type next to
+// Surface–surface intersection curves of a triangle mesh (tutorial §4.2, "surface intersections" as a third curve type next to
 // contours and boundaries). Candidate face pairs (overlapping bounding boxes,
 // no shared vertex) come from a uniform grid of cells two face boxes wide,
 // searched cell by cell in parallel; a conservative double-precision plane

@@ -1,8 +1,7 @@
 #pragma once
 // The workbench's two pictures of a snapshot (view-3d.png, view-2d.png) for
 // contour-batch --snapshot-dir, so a batch snapshot holds everything the
-// workbench's File › Export diagnostic snapshot holds (issue 6, batch
-// parity). They are drawn by the workbench's own views (SceneView3D with every
+// workbench's File › Export diagnostic snapshot holds. They are drawn by the workbench's own views (SceneView3D with every
 // overlay on, ImageView2D), off screen, from the analysis camera at its
 // viewport size. That needs the GUI build and a display (an X server:
 // xvfb-run -a is enough); without either, available() is false and

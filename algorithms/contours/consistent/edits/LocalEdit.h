@@ -1,5 +1,5 @@
 #pragma once
-// A local edit of the optimization phase (Bénard 2014 §6.4, notes §2.4),
+// A local edit of the optimization phase (Bénard 2014 §6.4),
 // evaluated before the mesh changes: the faces the edit would leave (a
 // flip's two faces, a split's four, a moved vertex's star) and the vertices
 // it would move or create. The §6.4 moves are accepted only when they
@@ -53,7 +53,7 @@ public:
     // the face across a CC edge taken from the edit or else from the mesh).
     bool labelsValid() const;
     // Every face is counter-clockwise in every common chart (appendix B, no
-    // parameter-space fold, notes §6.1 item 1).
+    // parameter-space fold, docs/dev/invariants.md item 1).
     bool parameterValid() const;
     // Appendix C for vertex v of the edit, judged on the edit's faces around
     // v (what shiftable() of Shiftability.h judges on the mesh, for an edit

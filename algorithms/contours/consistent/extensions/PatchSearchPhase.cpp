@@ -1,5 +1,5 @@
 // Patch search: compound moves of the optimization phase, not in the paper;
-// an extension of Bénard 2014 §6.4 (notes §2.4) that escapes the fixed
+// an extension of Bénard 2014 §6.4 that escapes the fixed
 // point of its one-edit-at-a-time local search.
 //
 // Why: after the §6.4 sweeps (flips, flip pairs, parameter wiggle, edge

@@ -1,5 +1,5 @@
 // Vertex removal of the optimization phase: an extension of Bénard 2014
-// §6.4 (notes §2.4) built from the vertex deletion of §6.3 (h) (Fig. 16e
+// §6.4 built from the vertex deletion of §6.3 (h) (Fig. 16e
 // right: flips around a vertex until it has valence 3, then its three faces
 // merge).
 //

@@ -23,7 +23,7 @@ ConsistentMesh::ConsistentMesh(std::shared_ptr<const SmoothSurface> surface, con
         throw std::invalid_argument("ConsistentMesh: no smooth surface");
 }
 
-// Notes §1.3: a vertex's position is always f(u_i), its normal n(u_i).
+// Bénard 2014 §4: a vertex's position is always f(u_i), its normal n(u_i).
 MeshVertex ConsistentMesh::evaluate(const Preimage& p) const {
     return evaluated(p, surface_->evaluate(p));
 }

@@ -1,13 +1,13 @@
 #pragma once
 // The per-view, editable triangle mesh of Bénard, Hertzmann & Kass 2014 §6
-// (notes §1.3, §2): every vertex i stores a preimage u_i on the smooth
+// (Bénard 2014 §4, §6): every vertex i stores a preimage u_i on the smooth
 // surface's domain, its position f(u_i), its limit normal n(u_i), g(u_i) =
 // (c - f) · n (eq. 1), the radial curvature and a label F / B / C. Local
 // operators only (§6: edge split, vertex shift); provenance per vertex
 // (initial / inserted / shifted, and the phase that last changed it) and per
 // face (the phase that created or last changed it).
 //
-// Preimage interpolation follows appendix B (notes §2.6): a point on a domain
+// Preimage interpolation follows appendix B: a point on a domain
 // edge or corner has one preimage per domain face around it; two preimages
 // are interpolated in a face that holds both, or, when they lie in
 // edge-adjacent faces, in one face's chart extended across the shared edge
@@ -30,7 +30,7 @@
 
 namespace contour::consistent {
 
-// R_S at a vertex (notes §1.3): sign of g, or C for an inserted root.
+// R_S at a vertex (Bénard 2014 §4): sign of g, or C for an inserted root.
 enum class VertexLabel : std::int8_t { Back = -1, Contour = 0, Front = 1 };
 enum class Provenance : std::int8_t { Initial = 0, Inserted = 1, Shifted = 2, Wiggled = 3 };
 
@@ -56,7 +56,7 @@ struct MeshVertex {
     Vec3 normal = Vec3::Zero();   // n(u), unit
     double g = 0.0;               // (c - f(u)) · n(u)
     double radialCurvature = 0.0; // SurfaceFields.h convention, NaN where undefined
-    // Only the final normal wiggle (§6.4, notes §2.4.5) moves a vertex off the
+    // Only the final normal wiggle (§6.4) moves a vertex off the
     // surface: position = f(u) + normalOffset * n(u).
     double normalOffset = 0.0;
     bool cusp = false; // a C vertex inserted at a cusp (g = 0 and κr = 0, §6.2 d)

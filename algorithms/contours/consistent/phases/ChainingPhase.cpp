@@ -1,4 +1,4 @@
-// The consistent mesh's contour generator (Bénard 2014 §8.1, notes §3.1):
+// The consistent mesh's contour generator (Bénard 2014 §8.1):
 // the edges between an F-VBO face and a B-VBO face, chained into polylines.
 #include "contours/common/EdgePolylines.h"
 #include "contours/consistent/phases/ConsistentPhases.h"
@@ -45,7 +45,7 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
             "contour generator's topology may differ from the smooth contour's");
 }
 
-// Notes §6.1 item 10: contour-generator vertices have degree 2 except on
+// docs/dev/invariants.md item 10: contour-generator vertices have degree 2 except on
 // boundaries, and every contour-generator edge is a CC edge.
 std::vector<InvariantCheck> checkChaining(const PhaseContext&, const Snapshot& s) {
     const TriangleMesh& mesh = *s.mesh;

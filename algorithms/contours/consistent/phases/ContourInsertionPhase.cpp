@@ -1,4 +1,4 @@
-// Contour vertex insertion (Bénard 2014 §6.2 e-f, Fig. 15d-f; notes §2.2).
+// Contour vertex insertion (Bénard 2014 §6.2 e-f, Fig. 15d-f).
 #include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/Bisection.h"
 #include "contours/consistent/phases/ConsistentPhases.h"

@@ -1,4 +1,4 @@
-// Cusp detection (Bénard 2014 §6.2 d, Fig. 15d, 16b, 18a-b; notes §1.6, §2.2).
+// Cusp detection (Bénard 2014 §6.2 d, Fig. 15d, 16b, 18a-b).
 #include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/Bisection.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"

@@ -1,5 +1,5 @@
 // Edge splitting of the optimization phase (Bénard 2014 §6.4 "Edge
-// Splitting"; notes §2.4.4).
+// Splitting").
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/OptimizationFlip.h"

@@ -1,4 +1,4 @@
-// Initialization (Bénard 2014 §6.1, Fig. 15a-c; notes §2.1).
+// Initialization (Bénard 2014 §6.1, Fig. 15a-c).
 #include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/PhaseChecks.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"

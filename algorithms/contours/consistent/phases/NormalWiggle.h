@@ -42,7 +42,7 @@ struct NormalOffsetStats {
 NormalOffsetStats normalOffsetStats(const ConsistentMesh& m);
 void publishNormalOffsetStats(Snapshot& s, const NormalOffsetStats& n);
 
-// optimizationChecks (radial edges off the surface) and notes §6.1 item 2
+// optimizationChecks (radial edges off the surface) and docs/dev/invariants.md item 2
 // for the normal offsets: |α| <= normal-wiggle-max-offset times the mean
 // one-ring distance.
 std::vector<InvariantCheck> normalWiggleChecks(const PhaseContext& ctx, const Snapshot& s);

@@ -1,5 +1,5 @@
-// Vertex wiggling in the normal direction (Bénard 2014 §6.4, final step;
-// notes §2.4.5): vertices may leave the limit surface.
+// Vertex wiggling in the normal direction (Bénard 2014 §6.4, final step):
+// vertices may leave the limit surface.
 #include "contours/consistent/edits/CuspEndRetriangulation.h"
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/phases/ConsistentPhases.h"
@@ -342,7 +342,7 @@ void publishNormalOffsetStats(Snapshot& s, const NormalOffsetStats& n) {
     s.setCounter(counters::kLargestContourShift, n.contourShift);
 }
 
-// Notes §6.1 item 2: |α| <= the mean one-ring distance (times
+// docs/dev/invariants.md item 2: |α| <= the mean one-ring distance (times
 // normal-wiggle-max-offset).
 std::vector<InvariantCheck> normalWiggleChecks(const PhaseContext& ctx, const Snapshot& s) {
     std::vector<InvariantCheck> out = optimizationChecks(ctx, s, false);

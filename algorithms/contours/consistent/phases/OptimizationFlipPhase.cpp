@@ -1,5 +1,5 @@
 // Edge flipping of the optimization phase (Bénard 2014 §6.4 "Edge
-// Flipping"; notes §2.4.2).
+// Flipping").
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/OptimizationFlip.h"

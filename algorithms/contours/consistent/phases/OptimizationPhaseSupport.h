@@ -1,5 +1,5 @@
 #pragma once
-// What the five optimization phases of Bénard 2014 §6.4 (notes §2.4) share:
+// What the five optimization phases of Bénard 2014 §6.4 share:
 // the sweep bookkeeping ("repeat until nothing improves", bounded by a
 // sweep limit), their counters and their post-conditions.
 #include "contours/consistent/mesh/ConsistentMesh.h"

@@ -1,4 +1,4 @@
-// Vertex wiggling in parameter space (Bénard 2014 §6.4; notes §2.4.3).
+// Vertex wiggling in parameter space (Bénard 2014 §6.4).
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/Bisection.h"

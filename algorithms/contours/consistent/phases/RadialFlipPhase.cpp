@@ -1,5 +1,5 @@
 // Edge flipping towards standard radial triangles (Bénard 2014 §6.3 h,
-// Fig. 15h, 16e; notes §2.3, §6.1 item 7).
+// Fig. 15h, 16e; docs/dev/invariants.md item 7).
 #include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/phases/ConsistentPhases.h"
 #include "contours/consistent/phases/PhaseChecks.h"

@@ -1,8 +1,8 @@
 #pragma once
-// Fold tests for the local edits of Bénard 2014 §6.3-§6.4 (notes §2.3, §2.4:
-// "creates no fold"). A fold is a triangle that turns over against the
+// Fold tests for the local edits of Bénard 2014 §6.3-§6.4 ("creates no
+// fold"). A fold is a triangle that turns over against the
 // surface it replaces, either in parameter space (the preimage map M -> P
-// stops being bijective, notes §1.3) or in 3D (vertices sit at their limit
+// stops being bijective, Bénard 2014 §4) or in 3D (vertices sit at their limit
 // positions f(u), so a split or flip can turn a face over even when its
 // preimages do not: Fig. 17). Every test answers "would this edit fold?"
 // before the mesh is changed.

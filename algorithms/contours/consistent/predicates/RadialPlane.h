@@ -1,5 +1,5 @@
 #pragma once
-// The radial plane of a contour point (Bénard 2014 §5, notes §1.5):
+// The radial plane of a contour point (Bénard 2014 §5):
 // h_p(q) = (n_p × (c - p)) · (q - p); it contains p, the view ray through p
 // and the normal, so its trace on the surface runs across the contour.
 #include "camera/Camera.h"

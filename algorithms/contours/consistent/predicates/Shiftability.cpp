@@ -31,7 +31,7 @@ bool shiftable(const ConsistentMesh& m, Index v, const Preimage& p, VertexLabel 
         if (newLabel == VertexLabel::Contour && l1 == VertexLabel::Contour &&
             l2 == VertexLabel::Contour)
             return false;
-        // Notes §6.1 item 4 (Definition 3): no degenerate CC edge, ever. Once
+        // docs/dev/invariants.md item 4 (Definition 3): no degenerate CC edge, ever. Once
         // v is C, edge v-t1 with t1 C is degenerate when the vertices
         // opposite it on both sides carry the same label (an isolated F or B
         // vertex inside a tiny loop would otherwise be snapped flat).

@@ -1,5 +1,5 @@
 #pragma once
-// Appendix C of Bénard 2014 (notes §2.5): may a vertex move to a new
+// Appendix C of Bénard 2014: may a vertex move to a new
 // preimage?
 #include "contours/consistent/mesh/ConsistentMesh.h"
 
@@ -9,7 +9,7 @@ namespace contour::consistent {
 // of appendix C: no fold in parameter space, no CCC triangle, no "X" (at
 // most two zero crossings on the one-ring's outer boundary), interpolation
 // to every neighbour still possible; and, beyond appendix C, no degenerate
-// CC edge (notes §6.1 item 4). A C vertex is never shifted (it sits on a
+// CC edge (docs/dev/invariants.md item 4). A C vertex is never shifted (it sits on a
 // root).
 bool shiftable(const ConsistentMesh& m, Index v, const Preimage& p, VertexLabel newLabel);
 

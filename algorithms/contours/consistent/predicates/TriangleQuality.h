@@ -1,7 +1,7 @@
 #pragma once
 // The triangle shape-quality metric of Bank & Smith 1997, used by Bénard 2014
 // §6.4 to break ties between optimization moves ("the best aspect ratio";
-// the paper does not quote the formula, notes §2.4.2):
+// the paper does not quote the formula):
 //   q = 4√3 · A / (l1² + l2² + l3²),
 // 1 for an equilateral triangle, 0 for a degenerate one.
 #include "core/Types.h"

@@ -2,7 +2,7 @@
 
 namespace contour::consistent {
 
-// Definition 1 (notes §1.4): the VBO follows the non-C labels; it is
+// Definition 1: the VBO follows the non-C labels; it is
 // undefined when both F and B occur or when all three vertices are C.
 Vbo vertexBasedOrientation(VertexLabel a, VertexLabel b, VertexLabel c) {
     int front = 0, back = 0;

@@ -1,6 +1,6 @@
 #pragma once
 // Vertex-Based Orientation and contour consistency (Bénard 2014 §4,
-// Definitions 1-3; notes §1.4).
+// Definitions 1-3).
 #include "camera/Facing.h"
 #include "contours/consistent/mesh/ConsistentMesh.h"
 
