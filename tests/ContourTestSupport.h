@@ -7,6 +7,7 @@
 #include "mesh/io/MeshReader.h"
 #include "pipeline/Runner.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -169,6 +170,24 @@ inline double baseline(const std::string& file, const std::string& key) {
         throw std::runtime_error("tests/baselines/" + file + ".json has no value for \"" + key +
                                  "\"");
     return entry->at("value").get<double>();
+}
+
+// Writes `mesh` as an OBJ file with positions to full precision (the tests
+// that hand a mesh to contour-batch); false when the file cannot be written.
+inline bool writeObjFile(const PolygonMesh& mesh, const std::string& path) {
+    std::ofstream out(path);
+    char line[128];
+    for (const Vec3& p : mesh.positions) {
+        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+        out << line;
+    }
+    for (Index f = 0; f < mesh.faceCount(); ++f) {
+        out << "f";
+        for (Index v : mesh.face(f))
+            out << ' ' << v + 1;
+        out << '\n';
+    }
+    return out.good();
 }
 
 inline int contourLoops(const Snapshot& s, int* open = nullptr) {

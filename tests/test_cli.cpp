@@ -2,12 +2,13 @@
 // meshes written to a temporary folder, and checks its SVG, its JSON report,
 // its summary, its exit codes and error messages, and that no output file is
 // left behind when it fails.
+#include "ContourTestSupport.h"
 #include "contours/Methods.h"
 #include "export/JsonReport.h"
 #include "export/SessionFile.h"
 #include "export/SvgWriter.h"
-#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 
 #include <QDir>
@@ -36,22 +37,6 @@ struct RunResult {
     QString out;
     QString err;
 };
-
-void writeObjFile(const PolygonMesh& mesh, const QString& path) {
-    std::ofstream out(path.toStdString());
-    char line[128];
-    for (const Vec3& p : mesh.positions) {
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-        out << line;
-    }
-    for (Index f = 0; f < mesh.faceCount(); ++f) {
-        out << "f";
-        for (Index v : mesh.face(f))
-            out << ' ' << v + 1;
-        out << '\n';
-    }
-    QVERIFY2(out.good(), qPrintable(path));
-}
 
 void writeText(const QString& path, const QByteArray& text) {
     QFile file(path);
@@ -234,13 +219,14 @@ private slots:
         QVERIFY(dir_.isValid());
         sphereMesh_ = makeSphere(1.0, 32);
         sphere_ = path("sphere.obj");
-        writeObjFile(sphereMesh_, sphere_);
+        QVERIFY(testing::writeObjFile(sphereMesh_, sphere_.toStdString()));
         saddle_ = path("saddle.obj");
-        writeObjFile(makeSaddlePatch(16), saddle_);
+        QVERIFY(testing::writeObjFile(makeSaddlePatch(16), saddle_.toStdString()));
         torus_ = path("torus.obj");
-        writeObjFile(makeProceduralShape("torus", 48), torus_);
+        QVERIFY(testing::writeObjFile(makeProceduralShape("torus", 48), torus_.toStdString()));
         bumpyTorus_ = path("bumpy-torus.obj");
-        writeObjFile(makeProceduralShape("bumpy-torus", 64), bumpyTorus_);
+        QVERIFY(testing::writeObjFile(makeProceduralShape("bumpy-torus", 64),
+                                      bumpyTorus_.toStdString()));
     }
 
     // The view graph in the SVG, the JSON report and the summary agree, for

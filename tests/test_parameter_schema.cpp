@@ -4,6 +4,7 @@
 // the "default" preset, and the consistent method's "paper" preset turns
 // every extension off (Bénard 2014 as written). Also contour-batch's
 // --preset flag, end to end.
+#include "ContourTestSupport.h"
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
 
@@ -69,19 +70,6 @@ bool isOffValue(const ParameterSpec& spec, const ParameterValue& value) {
     return false;
 }
 
-void writeObjFile(const PolygonMesh& mesh, const QString& path) {
-    std::ofstream out(path.toStdString());
-    char line[128];
-    for (const Vec3& p : mesh.positions) {
-        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-        out << line;
-    }
-    for (Index f = 0; f < mesh.faceCount(); ++f) {
-        out << "f";
-        for (Index v : mesh.face(f))
-            out << ' ' << v + 1;
-        out << '\n';
-    }
 }
 
 } // namespace
@@ -297,7 +285,7 @@ private slots:
         QVERIFY2(QFile::exists(kProgram), kProgram);
         QVERIFY(dir_.isValid());
         const QString mesh = dir_.filePath("sphere.obj");
-        writeObjFile(makeSphere(1.0, 16), mesh);
+        QVERIFY(testing::writeObjFile(makeSphere(1.0, 16), mesh.toStdString()));
         const QString json = dir_.filePath("paper.json");
         // Two phases are enough: the report records every parameter.
         const Run r = run({"--mesh", mesh, "--method", "consistent", "--preset", "paper",
