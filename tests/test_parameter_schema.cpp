@@ -254,6 +254,22 @@ private slots:
         QVERIFY(!m.preset("no-such-preset"));
     }
 
+    void aMethodWithoutPresetsOffersTheDefaults() {
+        Method m;
+        m.name = "bare";
+        m.parameters = {{"level", "Level", "A level.", ParameterType::Int, 2, 0, 5, {}}};
+        QVERIFY(m.presets.empty());
+        const ParameterPreset* defaults = m.preset("default");
+        QVERIFY(defaults);
+        QCOMPARE(defaults->name, std::string("default"));
+        QVERIFY(defaults->values.empty());
+        QVERIFY(!m.preset("paper"));
+        ParameterSet values = ParameterSet::defaults(m.parameters);
+        QVERIFY(changedFromPreset(m.parameters, *defaults, values).values().empty());
+        values.set("level", 4);
+        QCOMPARE(changedFromPreset(m.parameters, *defaults, values).getInt("level"), 4);
+    }
+
     void changedFromPresetListsWhatDiffers_data() { methodRows(); }
     void changedFromPresetListsWhatDiffers() {
         const Method& m = fetchMethod();
