@@ -796,10 +796,11 @@ private slots:
         QVERIFY2(r.err.contains("--json and --ply name the same file"), qPrintable(r.err));
     }
 
-    // Batch parity with the workbench's diagnostic snapshot: --snapshot-dir
-    // writes the report, SVG, PLY and session of the run, and (GUI build,
-    // with a display: the suites run under xvfb-run) the two PNGs drawn by
-    // the workbench's views; they agree with each other and with --json.
+    // Batch parity with the workbench's diagnostic snapshot:
+    // --snapshot-dir writes the report, SVG, PLY and session of the run,
+    // and (GUI build, with a display: the suites run under xvfb-run) the two
+    // PNGs drawn by the workbench's views; they agree with each other and
+    // with --json.
     void snapshotDir() {
         const QString out = freshOutputDir("snapshot");
         const QString spot = CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj";
@@ -916,6 +917,48 @@ private slots:
                  qPrintable(r.err));
     }
 
+    // The preset a run started from and the parameters changed from it go
+    // into the snapshot's session and report; a run of that session starts
+    // from the same preset; a session naming a preset the method lacks runs
+    // from the defaults, saying so.
+    void sessionRecordsThePreset() {
+        const QString out = freshOutputDir("preset-session");
+        RunResult r =
+            run({"--mesh", sphere_, "--method", "consistent", "--preset", "paper",
+                 "--snap-fraction", "0.3", "--phase", "1", "--snapshot-dir", out + "/snap"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QString sessionPath = out + "/snap/session.cwsession";
+        nlohmann::json session = readJson(sessionPath);
+        const nlohmann::json expected = {{"name", "paper"}, {"changed", {{"snap-fraction", 0.3}}}};
+        QCOMPARE(session["preset"], expected);
+        QCOMPARE(readJson(out + "/snap/report.json")["method"]["preset"], expected);
+        const Session read = readSession(sessionPath.toStdString());
+        QCOMPARE(read.preset, std::string("paper"));
+        QCOMPARE(read.presetChanges.getDouble("snap-fraction"), 0.3);
+
+        r = run({"--session", sessionPath, "--json", out + "/again.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(readJson(out + "/again.json")["method"]["preset"], expected);
+        // --preset replaces the session's parameters and its preset.
+        r = run({"--session", sessionPath, "--preset", "default", "--json", out + "/plain.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json plain = readJson(out + "/plain.json")["method"]["preset"];
+        QCOMPARE(plain["name"].get<std::string>(), std::string("default"));
+        QVERIFY(plain["changed"].empty());
+
+        session["preset"]["name"] = "no-such-preset";
+        writeText(path("unknown-preset.cwsession"), QByteArray::fromStdString(session.dump()));
+        r = run({"--session", path("unknown-preset.cwsession"), "--json", out + "/unknown.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2((r.out + r.err).contains("has no preset \"no-such-preset\""),
+                 qPrintable(r.out + r.err));
+        const nlohmann::json fallback = readJson(out + "/unknown.json")["method"]["preset"];
+        QCOMPARE(fallback["name"].get<std::string>(), std::string("default"));
+        // Every value the paper preset sets away from the defaults, and the flag.
+        QVERIFY(fallback["changed"].size() > 1);
+        QCOMPARE(fallback["changed"]["snap-fraction"].get<double>(), 0.3);
+    }
+
     // A snapshot file that cannot be written fails the run and takes every
     // other output along; the folder it made is removed again.
     void snapshotDirUnwritable() {
@@ -981,6 +1024,10 @@ private slots:
             QTest::addRow("planned %s", planned.name.c_str())
                 << QStringList{"--mesh", s, "--method", QString::fromStdString(planned.name)} << 2
                 << QString::fromStdString(planned.reason);
+        QTest::newRow("traced curves are planned")
+            << QStringList{"--mesh", s, "--method", "traced"} << 2
+            << "--method traced (Traced curves (Summers 2016)): not implemented yet: the contour "
+               "generator traced on the limit surface";
         QTest::newRow("unknown option")
             << QStringList{"--mesh", s, "--frobnicate"} << 2 << "--frobnicate";
         QTest::newRow("bad --eye: two numbers")

@@ -22,6 +22,7 @@
 #include <QLabel>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QTemporaryDir>
 #include <QToolBar>
@@ -131,6 +132,7 @@ private slots:
     void switchesMethod();
     void parameterFormRerunsMethod();
     void smoothSurfaceReplacesWorkingMesh();
+    void busyBarShowsPhaseProgress();
     void orbitShowsFrontAndBackFacesAndFrustum();
     void setAnalysisCameraFromView();
     void imageViewShowsCurves();
@@ -243,6 +245,10 @@ void TestMainWindow::plannedMethodsAreListedDisabled() {
         QCOMPARE(panel->methodToolTip(name), QString::fromStdString(m.reason));
         QVERIFY(!window_->setMethod(name));
     }
+    // Summers 2016's traced curves are among them.
+    QVERIFY(panel->listsMethod(QStringLiteral("traced")));
+    QVERIFY(!panel->isMethodEnabled(QStringLiteral("traced")));
+    QVERIFY(panel->methodToolTip(QStringLiteral("traced")).contains("limit surface"));
     QCOMPARE(window_->methodName(), QStringLiteral("mesh"));
 }
 
@@ -509,6 +515,65 @@ void TestMainWindow::smoothSurfaceReplacesWorkingMesh() {
     QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
 
     QVERIFY(window_->openMesh(sample(QStringLiteral("torus"))));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+}
+
+void TestMainWindow::busyBarShowsPhaseProgress() {
+    QVERIFY(window_->openMesh(sample(QStringLiteral("torus"))));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    QProgressBar* bar = window_->busyBar();
+    QVERIFY(bar);
+    QVERIFY(!bar->isVisible());
+    // What the bar shows at each progress report (the window's own slot runs
+    // first: it was connected first).
+    struct Seen {
+        int phase;
+        double fraction;
+        int maximum;
+        int value;
+        QString text;
+        bool visible;
+    };
+    std::vector<Seen> seen;
+    const QMetaObject::Connection connection =
+        connect(window_->runController(), &RunController::progress, window_,
+                [&](int phase, double fraction) {
+                    seen.push_back({phase, fraction, bar->maximum(), bar->value(), bar->text(),
+                                    bar->isVisible()});
+                });
+    // The surface phase reports half way once the limit surface is built.
+    auto* surface =
+        qobject_cast<QComboBox*>(window_->methodPanel()->editor(QStringLiteral("surface")));
+    QVERIFY(surface);
+    surface->setCurrentText(QStringLiteral("catmull-clark"));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    disconnect(connection);
+    QVERIFY2(window_->lastError().isEmpty(), qPrintable(window_->lastError()));
+    const Method* method = findMethod(window_->methodName().toStdString());
+    QVERIFY(method);
+    const int surfacePhase = method->phaseIndex("surface");
+    QVERIFY(surfacePhase >= 0);
+    bool sawFraction = false;
+    for (const Seen& s : seen) {
+        QVERIFY(s.visible);
+        if (s.fraction == 0.0) {
+            QCOMPARE(s.maximum, 0); // entering a phase: busy, no fraction yet
+            continue;
+        }
+        QCOMPARE(s.phase, surfacePhase);
+        QCOMPARE(s.maximum, MainWindow::kBusyBarSteps);
+        QCOMPARE(s.value, static_cast<int>(std::lround(s.fraction * MainWindow::kBusyBarSteps)));
+        QVERIFY2(s.text.contains(QStringLiteral("surface")), qPrintable(s.text));
+        QVERIFY2(s.text.contains(QStringLiteral("%1%").arg(std::lround(s.fraction * 100))),
+                 qPrintable(s.text));
+        sawFraction = true;
+    }
+    QVERIFY(sawFraction);
+    QCOMPARE(seen.front().phase, 0);
+    // Idle again: hidden, and busy without a fraction for the next job.
+    QVERIFY(!bar->isVisible());
+    QCOMPARE(bar->maximum(), 0);
+    surface->setCurrentText(QStringLiteral("none"));
     QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
 }
 

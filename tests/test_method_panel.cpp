@@ -1,5 +1,6 @@
 // The method panel's form for the consistent method: one collapsible
-// section per parameter group, the preset selector, and the method's
+// section per parameter group, the preset selector (an edit marks the chosen
+// preset modified, choosing it again restores it), and the method's
 // description wrapping inside the panel. Needs a display: run under
 // `xvfb-run -a -s "-screen 0 1600x1200x24"`.
 #include "MethodPanel.h"
@@ -8,6 +9,7 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QLabel>
 #include <QSignalSpy>
 #include <QSpinBox>
@@ -102,6 +104,72 @@ private slots:
         QVERIFY(panel.setMethod(QStringLiteral("mesh")));
         QCOMPARE(presets->count(), 1);
         QCOMPARE(panel.presetName(), QStringLiteral("default"));
+    }
+
+    void editingAfterAPresetMarksItModified() {
+        MethodPanel panel;
+        QVERIFY(panel.setMethod(QStringLiteral("consistent")));
+        const Method& m = *findMethod("consistent");
+        const ParameterSet paper = presetValues(m.parameters, *m.preset("paper"));
+        QComboBox* presets = panel.presetSelector();
+        QVERIFY(panel.setPreset(QStringLiteral("paper")));
+        QCOMPARE(presets->currentText(), QStringLiteral("paper"));
+        QVERIFY(!panel.isPresetModified());
+        auto* snap = qobject_cast<QDoubleSpinBox*>(panel.editor(QStringLiteral("snap-fraction")));
+        auto* patchSearch = qobject_cast<QCheckBox*>(panel.editor(QStringLiteral("patch-search")));
+        QVERIFY(snap && patchSearch);
+        QCOMPARE(snap->value(), paper.getDouble("snap-fraction"));
+        const double other = paper.getDouble("snap-fraction") + 0.1;
+
+        // An edit marks the preset modified; the preset stays the one chosen.
+        QSignalSpy changed(&panel, &MethodPanel::parametersChanged);
+        snap->setValue(other);
+        QCOMPARE(changed.count(), 1);
+        QVERIFY(panel.isPresetModified());
+        QCOMPARE(presets->currentText(), QStringLiteral("paper (modified)"));
+        QCOMPARE(panel.presetName(), QStringLiteral("paper"));
+        QCOMPARE(presets->itemText(presets->findData(QStringLiteral("default"))),
+                 QStringLiteral("default"));
+        // Back to the preset's value: not modified any more.
+        snap->setValue(paper.getDouble("snap-fraction"));
+        QVERIFY(!panel.isPresetModified());
+        QCOMPARE(presets->currentText(), QStringLiteral("paper"));
+
+        // Two edits, then the user picks the preset again: its values return.
+        snap->setValue(other);
+        patchSearch->setChecked(!patchSearch->isChecked());
+        QCOMPARE(presets->currentText(), QStringLiteral("paper (modified)"));
+        changed.clear();
+        emit presets->activated(presets->currentIndex());
+        QCOMPARE(changed.count(), 1);
+        QCOMPARE(snap->value(), paper.getDouble("snap-fraction"));
+        QCOMPARE(patchSearch->isChecked(), paper.getBool("patch-search"));
+        QVERIFY(panel.parameters().values() == paper.values());
+        QVERIFY(!panel.isPresetModified());
+        QCOMPARE(presets->currentText(), QStringLiteral("paper"));
+
+        // Values put into the form (a reopened run) are compared with the
+        // preset they started from, which is selected without changing them.
+        ParameterSet restored = paper;
+        restored.set("snap-fraction", other);
+        changed.clear();
+        panel.setParameters(restored);
+        QVERIFY(panel.setStartingPreset(QStringLiteral("default")));
+        QVERIFY(panel.isPresetModified());
+        QCOMPARE(presets->currentText(), QStringLiteral("default (modified)"));
+        QVERIFY(panel.setStartingPreset(QStringLiteral("paper")));
+        QCOMPARE(changed.count(), 0);
+        QCOMPARE(panel.presetName(), QStringLiteral("paper"));
+        QCOMPARE(presets->currentText(), QStringLiteral("paper (modified)"));
+        QCOMPARE(presets->itemText(presets->findData(QStringLiteral("default"))),
+                 QStringLiteral("default"));
+        QVERIFY(panel.parameters().values() == restored.values());
+        QVERIFY(!panel.setStartingPreset(QStringLiteral("no-such-preset")));
+        QCOMPARE(panel.presetName(), QStringLiteral("paper"));
+        // A method change starts from its defaults, unmarked.
+        QVERIFY(panel.setMethod(QStringLiteral("mesh")));
+        QCOMPARE(presets->currentText(), QStringLiteral("default"));
+        QVERIFY(!panel.isPresetModified());
     }
 
     void descriptionWrapsInsideThePanel() {

@@ -2,8 +2,9 @@
 // (the phase declared after it, or a method-wide group), its help text is
 // short and cites the paper without figures or history, every method offers
 // the "default" preset, and the consistent method's "paper" preset turns
-// every extension off (Bénard 2014 as written). Also contour-batch's
-// --preset flag, end to end.
+// every extension off (Bénard 2014 as written), and what a set of values
+// changed from a preset. Also contour-batch's --preset flag and the preset its
+// JSON report records, end to end.
 #include "ContourTestSupport.h"
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
@@ -239,6 +240,124 @@ private slots:
             QVERIFY2(problems.empty(), problems.empty() ? "" : problems.front().c_str());
         }
         QVERIFY(!m.preset("no-such-preset"));
+    }
+
+    void aMethodWithoutPresetsOffersTheDefaults() {
+        Method m;
+        m.name = "bare";
+        m.parameters = {{"level", "Level", "A level.", ParameterType::Int, 2, 0, 5, {}}};
+        QVERIFY(m.presets.empty());
+        const ParameterPreset* defaults = m.preset("default");
+        QVERIFY(defaults);
+        QCOMPARE(defaults->name, std::string("default"));
+        QVERIFY(defaults->values.empty());
+        QVERIFY(!m.preset("paper"));
+        ParameterSet values = ParameterSet::defaults(m.parameters);
+        QVERIFY(changedFromPreset(m.parameters, *defaults, values).values().empty());
+        values.set("level", 4);
+        QCOMPARE(changedFromPreset(m.parameters, *defaults, values).getInt("level"), 4);
+    }
+
+    void changedFromPresetListsWhatDiffers_data() { methodRows(); }
+    void changedFromPresetListsWhatDiffers() {
+        const Method& m = fetchMethod();
+        for (const ParameterPreset& preset : m.presets) {
+            const ParameterSet start = presetValues(m.parameters, preset);
+            QVERIFY2(changedFromPreset(m.parameters, preset, start).values().empty(),
+                     preset.name.c_str());
+            // One value changed (a choice to another choice, a number, a
+            // switch): that value alone.
+            for (const ParameterSpec& spec : m.parameters) {
+                ParameterSet values = start;
+                ParameterValue other;
+                if (spec.type == ParameterType::Bool)
+                    other = !start.getBool(spec.name);
+                else if (spec.type == ParameterType::Int)
+                    other = start.getInt(spec.name) == static_cast<int>(spec.minimum)
+                                ? static_cast<int>(spec.minimum) + 1
+                                : static_cast<int>(spec.minimum);
+                else if (spec.type == ParameterType::Double) {
+                    const double x = start.getDouble(spec.name);
+                    other = x != spec.minimum             ? spec.minimum
+                            : spec.maximum > spec.minimum ? spec.maximum
+                                                          : x + 1.0;
+                } else if (spec.choices.size() > 1)
+                    other = start.getChoice(spec.name) == spec.choices[0] ? spec.choices[1]
+                                                                          : spec.choices[0];
+                else
+                    continue;
+                values.set(spec.name, other);
+                const ParameterSet changed = changedFromPreset(m.parameters, preset, values);
+                QCOMPARE(changed.values().size(), size_t(1));
+                QVERIFY2(changed.has(spec.name) && changed.value(spec.name) == other,
+                         (preset.name + ": " + spec.name).c_str());
+            }
+        }
+        // Names outside the schema are not changes.
+        ParameterSet values = ParameterSet::defaults(m.parameters);
+        values.set("no-such-parameter", 1);
+        QVERIFY(changedFromPreset(m.parameters, m.presets.front(), values).values().empty());
+    }
+
+    void paperChangesFromTheDefaultsAreItsValues() {
+        const Method& m = *findMethod("consistent");
+        const ParameterPreset& paper = *m.preset("paper");
+        const ParameterSet changed = changedFromPreset(m.parameters, *m.preset("default"),
+                                                       presetValues(m.parameters, paper));
+        QVERIFY(!changed.values().empty());
+        for (const auto& [name, value] : changed.values()) {
+            QVERIFY2(paper.values.count(name), name.c_str());
+            QVERIFY(paper.values.at(name) == value);
+        }
+        // A number equal by value is no change: 10.0 for the integer 10.
+        ParameterSet values = presetValues(m.parameters, paper);
+        values.set("snap-fraction", 0); // an int for the double 0.2: a change
+        values.set("cusp-area-threshold", 1e-20);
+        const ParameterSet edited = changedFromPreset(m.parameters, paper, values);
+        QCOMPARE(edited.values().size(), size_t(1));
+        QVERIFY(edited.has("snap-fraction"));
+        ParameterSet sameByValue = presetValues(m.parameters, paper);
+        sameByValue.set("snap-fraction", 0.2);
+        sameByValue.set("crossing-samples", 10.0);
+        QVERIFY(changedFromPreset(m.parameters, paper, sameByValue).values().empty());
+    }
+
+    void cliReportRecordsThePresetAndItsChanges() {
+        QVERIFY2(QFile::exists(kProgram), kProgram);
+        QVERIFY(dir_.isValid());
+        const QString mesh = dir_.filePath("preset-sphere.obj");
+        QVERIFY(testing::writeObjFile(makeSphere(1.0, 16), mesh.toStdString()));
+        const auto report = [&](const QStringList& args) {
+            const QString json = dir_.filePath("preset-report.json");
+            QFile::remove(json);
+            const Run r = run(QStringList{"--mesh", mesh, "--json", json} + args);
+            if (r.exitCode != 0)
+                qWarning("%s", qPrintable(r.err));
+            QFile file(json);
+            if (!file.open(QIODevice::ReadOnly))
+                return nlohmann::json();
+            return nlohmann::json::parse(file.readAll().toStdString()).at("method").at("preset");
+        };
+        // The paper preset with one flag on top: the flag is the one change.
+        const nlohmann::json paper = report({"--method", "consistent", "--preset", "paper",
+                                             "--snap-fraction", "0.3", "--phase", "1"});
+        QVERIFY(paper.is_object());
+        QCOMPARE(paper.at("name").get<std::string>(), std::string("paper"));
+        QCOMPARE(paper.at("changed").size(), size_t(1));
+        QCOMPARE(paper.at("changed").at("snap-fraction").get<double>(), 0.3);
+        // Without --preset: the defaults, and a flag set to its default is no change.
+        const Method& meshMethod = *findMethod("mesh");
+        const std::string levelDefault =
+            toString(meshMethod.parameter("tessellation-level")->defaultValue);
+        const nlohmann::json plain = report(
+            {"--method", "mesh", "--tessellation-level", QString::fromStdString(levelDefault)});
+        QVERIFY(plain.is_object());
+        QCOMPARE(plain.at("name").get<std::string>(), std::string("default"));
+        QVERIFY(plain.at("changed").empty());
+        const nlohmann::json smooth = report({"--method", "mesh", "--surface", "catmull-clark"});
+        QVERIFY(smooth.is_object());
+        QCOMPARE(smooth.at("changed").at("surface").get<std::string>(),
+                 std::string("catmull-clark"));
     }
 
     void paperPresetTurnsEveryExtensionOff() {

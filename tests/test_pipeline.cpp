@@ -154,6 +154,8 @@ private slots:
         QVERIFY(findMethod("consistent"));
         QVERIFY(!findPlannedMethod("consistent"));
         QVERIFY(findPlannedMethod("powell-sabin"));
+        QVERIFY(findPlannedMethod("traced"));
+        QVERIFY(!findMethod("traced"));
     }
 
     void stepBackAndSnapshotsStayUnchanged() {

@@ -1,8 +1,9 @@
 // The application's resources (resources/contour-workbench.qrc): every icon
 // the workbench's actions use is there and draws something, every action
-// with an icon has a non-null one, the colour maps read from the resource at
-// start-up are the views' colours, and the window starts with the defaults
-// of resources/settings/defaults.json. Needs a display: run under
+// with an icon has a non-null one, the overlay and view-graph toggles show
+// their SVGs, the colour maps read from the resource at start-up (the scene's
+// and the view graph's) are the views' colours, and the window starts with
+// the defaults of resources/settings/defaults.json. Needs a display: run under
 // `xvfb-run -a -s "-screen 0 1600x1200x24"` (Mesa llvmpipe).
 #include "DivergingColorMap.h"
 #include "MainWindow.h"
@@ -10,12 +11,14 @@
 #include "Resources.h"
 #include "SceneColors.h"
 #include "SurfaceFormat.h"
+#include "ViewGraphStyle.h"
 #include "WorkbenchDefaults.h"
 
 #include <QAction>
 #include <QApplication>
 #include <QDir>
 #include <QImage>
+#include <QSet>
 #include <QSvgRenderer>
 #include <QtTest>
 #include <vtkLookupTable.h>
@@ -47,6 +50,8 @@ private slots:
     void everyIconIsADrawing();
     void actionsHaveTheirIcons();
     void colourMapsComeFromTheResource();
+    void toggleIconsAreResourceDrawings();
+    void viewGraphColoursComeFromTheResource();
     void windowStartsWithTheDefaults();
 };
 
@@ -128,6 +133,69 @@ void TestResources::colourMapsComeFromTheResource() {
     // The first and last bins are within a bin of the end colours.
     QVERIFY(std::abs(low[2] - 0.754) < 0.02 && std::abs(low[0] - 0.230) < 0.02);
     QVERIFY(std::abs(high[0] - 0.706) < 0.02 && std::abs(high[2] - 0.150) < 0.02);
+}
+
+void TestResources::toggleIconsAreResourceDrawings() {
+    MainWindow window;
+    // The overlay and view-graph toggles, in their enums' order, show the
+    // SVG of resources/icons/ named after them.
+    const QStringList overlayIcons{
+        QStringLiteral("overlay-inconsistent-faces"), QStringLiteral("overlay-radial-faces"),
+        QStringLiteral("overlay-contour-vertices"), QStringLiteral("overlay-cusps"),
+        QStringLiteral("overlay-radial-edges")};
+    const QStringList viewGraphIcons{
+        QStringLiteral("view-graph-hidden-curves"), QStringLiteral("view-graph-colour-by-qi"),
+        QStringLiteral("view-graph-nodes"), QStringLiteral("view-graph-simplified-curves")};
+    QCOMPARE(overlayIcons.size(), kSceneOverlayCount);
+    QCOMPARE(viewGraphIcons.size(), MainWindow::kViewGraphToggleCount);
+    std::vector<std::pair<const QAction*, QString>> toggles;
+    for (int i = 0; i < kSceneOverlayCount; ++i)
+        toggles.emplace_back(window.overlayAction(static_cast<SceneOverlay>(i)), overlayIcons[i]);
+    for (int i = 0; i < MainWindow::kViewGraphToggleCount; ++i)
+        toggles.emplace_back(window.viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i)),
+                             viewGraphIcons[i]);
+    QSet<QByteArray> drawings;
+    for (const auto& [action, name] : toggles) {
+        QVERIFY2(action, qPrintable(name));
+        const QIcon resource = resourceIcon(name);
+        QVERIFY2(!resource.isNull(), qPrintable(name));
+        // Drawn from the SVG at any size (a painted pixmap would be 16 px).
+        for (int size : {16, 24, 48}) {
+            const QImage shown = action->icon().pixmap(size, size).toImage();
+            QCOMPARE(shown.size(), QSize(size, size));
+            QVERIFY2(shown == resource.pixmap(size, size).toImage(), qPrintable(name));
+        }
+        QVERIFY2(opaquePixels(resource, 24) > 20, qPrintable(name));
+        const QImage image = resource.pixmap(24, 24).toImage();
+        drawings.insert(QByteArray(reinterpret_cast<const char*>(image.constBits()),
+                                   static_cast<int>(image.sizeInBytes())));
+    }
+    QCOMPARE(drawings.size(), static_cast<qsizetype>(toggles.size())); // all different
+}
+
+void TestResources::viewGraphColoursComeFromTheResource() {
+    loadSceneColors();
+    // The values the views have always drawn with (image tests rely on them).
+    QVERIFY(equal(viewGraphColors::kHiddenQi[0], 0.45, 0.10, 0.62));
+    QVERIFY(equal(viewGraphColors::kHiddenQi[1], 0.62, 0.36, 0.80));
+    QVERIFY(equal(viewGraphColors::kHiddenQi[2], 0.78, 0.63, 0.90));
+    QVERIFY(equal(viewGraphColors::kUnknownQi, 0.60, 0.60, 0.60));
+    QVERIFY(equal(viewGraphColors::kSimplified2D, 0.82, 0.82, 0.82));
+    QVERIFY(equal(viewGraphColors::kSimplified3D, 0.70, 0.70, 0.70));
+    QVERIFY(equal(nodeStyle(ViewNodeType::CurtainFold).color, 0.0, 0.80, 0.95));
+    QVERIFY(equal(nodeStyle(ViewNodeType::BoundaryCurtainFold).color, 0.15, 0.75, 0.30));
+    QVERIFY(equal(nodeStyle(ViewNodeType::ImageIntersection).color, 1.0, 0.55, 0.0));
+    QVERIFY(equal(nodeStyle(ViewNodeType::ContourBoundaryJunction).color, 0.55, 0.33, 0.10));
+    QVERIFY(equal(nodeStyle(ViewNodeType::Bifurcation).color, 1.0, 0.40, 0.70));
+    QVERIFY(equal(nodeStyle(ViewNodeType::CurveEnd).color, 0.25, 0.25, 0.25));
+    QVERIFY(equal(nodeStyle(ViewNodeType::HiddenFoldCrossing).color, 0.60, 0.50, 0.40));
+    const SceneColor intersection = nodeStyle(ViewNodeType::SurfaceIntersectionEnd).color;
+    QVERIFY(equal(intersection, sceneColors::kIntersection.r, sceneColors::kIntersection.g,
+                  sceneColors::kIntersection.b));
+    // QI colours as the views pick them.
+    QVERIFY(equal(qiColor(2, sceneColors::kContour3D), 0.62, 0.36, 0.80));
+    QVERIFY(equal(qiColor(7, sceneColors::kContour3D), 0.78, 0.63, 0.90));
+    QVERIFY(equal(qiColor(-1, sceneColors::kContour3D), 0.60, 0.60, 0.60));
 }
 
 void TestResources::windowStartsWithTheDefaults() {

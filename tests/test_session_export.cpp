@@ -6,7 +6,8 @@
 // parameters, camera, per-phase counters and times, every inconsistent face
 // with its details), the PLY reloads with the labels of the snapshot; a
 // session saved and opened in a second window restores the method, the
-// analysis and view cameras, the parameters, the phase and the display; an
+// analysis and view cameras, the parameters, the phase, the display and the
+// preset the parameters started from (shown modified when they differ); an
 // export that cannot be written fails naming the file and leaves nothing
 // behind (a file kept aside is put back). Needs a display: run under
 // `xvfb-run -a` (Mesa llvmpipe).
@@ -18,6 +19,7 @@
 #include "SceneView3D.h"
 #include "SessionController.h"
 #include "SurfaceFormat.h"
+#include "contours/Methods.h"
 #include "export/DiagnosticSnapshot.h"
 #include "export/SessionFile.h"
 #include "mesh/io/MeshReader.h"
@@ -25,6 +27,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QComboBox>
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
@@ -109,6 +112,7 @@ private slots:
     void shortcutsAndAbout();
     void exportSnapshot();
     void sessionRoundTrip();
+    void sessionRestoresThePreset();
     void failedExportLeavesNothing();
     void cleanupTestCase();
 };
@@ -378,6 +382,60 @@ void TestSessionExport::sessionRoundTrip() {
                  other.lastError().contains(QStringLiteral("method")),
              qPrintable(other.lastError()));
     QCOMPARE(other.completedPhases(), window_->completedPhases());
+}
+
+void TestSessionExport::sessionRestoresThePreset() {
+    // The window runs the defaults with snap-fraction changed.
+    MethodPanel* panel = window_->methodPanel();
+    QCOMPARE(panel->presetName(), QStringLiteral("default"));
+    QVERIFY(panel->isPresetModified());
+    QCOMPARE(panel->presetSelector()->currentText(), QStringLiteral("default (modified)"));
+    const QString path = dir_.filePath(QStringLiteral("preset.cwsession"));
+    QVERIFY2(window_->saveSession(path), qPrintable(window_->lastError()));
+    const nlohmann::json saved = readJson(path);
+    QCOMPARE(saved["preset"]["name"].get<std::string>(), std::string("default"));
+    QCOMPARE(saved["preset"]["changed"], nlohmann::json({{"snap-fraction", 0.25}}));
+
+    // A session that started from the paper preset with one value changed,
+    // at the first phase.
+    const Method& method = *findMethod("consistent");
+    const ParameterSet paper = presetValues(method.parameters, *method.preset("paper"));
+    Session session = readSession(path.toStdString());
+    session.parameters = paper;
+    session.parameters.set("snap-fraction", 0.3);
+    session.phaseReached = 1;
+    session.phaseName = method.phases.front().name;
+    setSessionPreset(session, method, "paper");
+    const QString paperPath = dir_.filePath(QStringLiteral("paper.cwsession"));
+    writeSession(paperPath.toStdString(), session);
+
+    MainWindow other;
+    other.setInteractive(false);
+    other.resize(1200, 800);
+    other.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&other));
+    QVERIFY2(other.openSession(paperPath), qPrintable(other.lastError()));
+    QVERIFY(other.waitForIdle(kIdleTimeoutMs));
+    MethodPanel* otherPanel = other.methodPanel();
+    QCOMPARE(otherPanel->presetName(), QStringLiteral("paper"));
+    QVERIFY(otherPanel->isPresetModified());
+    QCOMPARE(otherPanel->presetSelector()->currentText(), QStringLiteral("paper (modified)"));
+    QCOMPARE(other.runner()->parameters().getDouble("snap-fraction"), 0.3);
+    QCOMPARE(other.completedPhases(), 1);
+
+    // Choosing the preset again runs with its values, unmodified.
+    QComboBox* presets = otherPanel->presetSelector();
+    emit presets->activated(presets->findData(QStringLiteral("paper")));
+    QVERIFY(other.waitForIdle(kIdleTimeoutMs));
+    QVERIFY2(other.lastError().isEmpty(), qPrintable(other.lastError()));
+    QVERIFY(other.runner()->parameters().values() == paper.values());
+    QVERIFY(!otherPanel->isPresetModified());
+    QCOMPARE(presets->currentText(), QStringLiteral("paper"));
+    const QString again = dir_.filePath(QStringLiteral("paper-again.cwsession"));
+    QVERIFY2(other.saveSession(again), qPrintable(other.lastError()));
+    const nlohmann::json resaved = readJson(again);
+    QCOMPARE(resaved["preset"]["name"].get<std::string>(), std::string("paper"));
+    QVERIFY(resaved["preset"]["changed"].empty());
 }
 
 void TestSessionExport::failedExportLeavesNothing() {

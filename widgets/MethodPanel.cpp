@@ -9,8 +9,8 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QRegularExpression>
-#include <QSpinBox>
 #include <QSizePolicy>
+#include <QSpinBox>
 #include <QStandardItemModel>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -192,8 +192,33 @@ bool MethodPanel::setPreset(const QString& name) {
     return true;
 }
 
+bool MethodPanel::setStartingPreset(const QString& name) {
+    const int index = presetSelector_->findData(name);
+    if (index < 0)
+        return false;
+    presetSelector_->setCurrentIndex(index);
+    updatePresetMark();
+    return true;
+}
+
 QString MethodPanel::presetName() const {
     return presetSelector_->currentData().toString();
+}
+
+bool MethodPanel::isPresetModified() const {
+    const Method* m = method();
+    const ParameterPreset* preset = m ? m->preset(presetName().toStdString()) : nullptr;
+    return preset && !changedFromPreset(m->parameters, *preset, parameters()).values().empty();
+}
+
+void MethodPanel::updatePresetMark() {
+    const int current = presetSelector_->currentIndex();
+    const bool modified = isPresetModified();
+    for (int i = 0; i < presetSelector_->count(); ++i) {
+        const QString name = presetSelector_->itemData(i).toString();
+        presetSelector_->setItemText(i, i == current && modified ? tr("%1 (modified)").arg(name)
+                                                                 : name);
+    }
 }
 
 void MethodPanel::onPresetChanged(int index) {
@@ -202,7 +227,7 @@ void MethodPanel::onPresetChanged(int index) {
         m ? m->preset(presetSelector_->itemData(index).toString().toStdString()) : nullptr;
     if (!preset)
         return;
-    setParameters(presetValues(m->parameters, *preset));
+    setParameters(presetValues(m->parameters, *preset)); // clears the modified mark
     emit parametersChanged();
 }
 
@@ -299,8 +324,10 @@ void MethodPanel::rebuildForm() {
         groups_.emplace_back(group, section);
     }
     const auto changed = [this] {
-        if (!updating_)
-            emit parametersChanged();
+        if (updating_)
+            return;
+        updatePresetMark();
+        emit parametersChanged();
     };
     for (const ParameterSpec& spec : m->parameters) {
         const QString help = QString::fromStdString(spec.help);
@@ -419,6 +446,7 @@ void MethodPanel::setParameters(const ParameterSet& values) {
         }
     }
     updating_ = false;
+    updatePresetMark();
 }
 
 QWidget* MethodPanel::editor(const QString& parameterName) const {

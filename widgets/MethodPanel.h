@@ -5,13 +5,15 @@
 // method's ParameterSpecs: one collapsible section per parameter group
 // (a header button and a body, object names "group-NAME-header" and
 // "group-NAME"), bool -> check box, int / double -> spin box with the spec's
-// range, choice -> combo box, help text as tooltip.
+// range, choice -> combo box, help text as tooltip. Once a value differs
+// from the chosen preset's, the selector shows the preset as modified
+// ("paper (modified)"); choosing the preset again puts its values back.
 #include "pipeline/Method.h"
 #include "pipeline/Parameters.h"
 
 #include <QString>
-#include <QWidget>
 #include <QStringList>
+#include <QWidget>
 #include <map>
 #include <string>
 #include <utility>
@@ -57,8 +59,13 @@ public:
     // Puts the selected method's preset into the form and emits
     // parametersChanged; false for an unknown name.
     bool setPreset(const QString& name);
+    // Selects the preset the form's values started from without changing
+    // them (a reopened session); emits nothing; false for an unknown name.
+    bool setStartingPreset(const QString& name);
     // The preset last chosen ("default" after a method change).
     QString presetName() const;
+    // Whether a value in the form differs from the chosen preset's.
+    bool isPresetModified() const;
 
     // The selected method's parameter groups, in order.
     QStringList groups() const;
@@ -75,6 +82,8 @@ private:
     void onSelectorChanged(int index);
     void onPresetChanged(int index);
     void rebuildForm();
+    // Shows the chosen preset as modified or not.
+    void updatePresetMark();
 
     struct Section {
         QToolButton* header = nullptr;

@@ -1,6 +1,7 @@
 #include "SceneColors.h"
 
 #include "Resources.h"
+#include "ViewGraphStyle.h"
 
 #include <QCoreApplication>
 #include <QFile>
@@ -23,6 +24,14 @@ struct Palette {
         nanValue{}, contourOverField{}, scalarBarText{}, backgroundTop{}, backgroundBottom{};
 };
 Palette palette;
+
+// The view graph's colours (ViewGraphStyle.h), filled by loadSceneColors().
+struct ViewGraphPalette {
+    std::array<SceneColor, 3> hiddenQi{};
+    SceneColor unknownQi{}, simplified2D{}, simplified3D{}, curtainFold{}, boundaryCurtainFold{},
+        tJunction{}, yJunction{}, bifurcation{}, curveEnd{}, hiddenFoldCrossing{}, unknownNode{};
+};
+ViewGraphPalette viewGraphPalette;
 
 // The keys of resources/colormaps/scene-colors.json.
 const std::pair<const char*, SceneColor*> kSceneKeys[] = {
@@ -58,6 +67,24 @@ const std::pair<const char*, SceneColor*> kDivergingKeys[] = {
     {"nan", &palette.nanValue},
 };
 
+// The keys of resources/colormaps/view-graph-colors.json.
+const std::pair<const char*, SceneColor*> kViewGraphKeys[] = {
+    {"hidden-qi-1", &viewGraphPalette.hiddenQi[0]},
+    {"hidden-qi-2", &viewGraphPalette.hiddenQi[1]},
+    {"hidden-qi-3", &viewGraphPalette.hiddenQi[2]},
+    {"unknown-qi", &viewGraphPalette.unknownQi},
+    {"simplified-2d", &viewGraphPalette.simplified2D},
+    {"simplified-3d", &viewGraphPalette.simplified3D},
+    {"curtain-fold", &viewGraphPalette.curtainFold},
+    {"boundary-curtain-fold", &viewGraphPalette.boundaryCurtainFold},
+    {"t-junction", &viewGraphPalette.tJunction},
+    {"y-junction", &viewGraphPalette.yJunction},
+    {"bifurcation", &viewGraphPalette.bifurcation},
+    {"curve-end", &viewGraphPalette.curveEnd},
+    {"hidden-fold-crossing", &viewGraphPalette.hiddenFoldCrossing},
+    {"unknown-node", &viewGraphPalette.unknownNode},
+};
+
 [[noreturn]] void fail(const QString& path, const QString& why) {
     qFatal("%s: %s", qPrintable(path), qPrintable(why));
 }
@@ -84,17 +111,22 @@ SceneColor toColor(const QJsonValue& value, const QString& path, const QString& 
     return c;
 }
 
-void readColors() {
-    registerContourResources();
-    const QString scenePath = QStringLiteral(":/colormaps/scene-colors.json");
-    const QJsonObject colors = readObject(scenePath).value(QStringLiteral("colors")).toObject();
-    for (const auto& [key, target] : kSceneKeys) {
+// A file {"colors": {key: {"rgb": [r, g, b], "use": text}}}.
+template <size_t N>
+void readNamedColors(const QString& path, const std::pair<const char*, SceneColor*> (&keys)[N]) {
+    const QJsonObject colors = readObject(path).value(QStringLiteral("colors")).toObject();
+    for (const auto& [key, target] : keys) {
         const QString name = QString::fromLatin1(key);
         if (!colors.contains(name))
-            fail(scenePath, QStringLiteral("no colour \"%1\"").arg(name));
-        *target =
-            toColor(colors.value(name).toObject().value(QStringLiteral("rgb")), scenePath, name);
+            fail(path, QStringLiteral("no colour \"%1\"").arg(name));
+        *target = toColor(colors.value(name).toObject().value(QStringLiteral("rgb")), path, name);
     }
+}
+
+void readColors() {
+    registerContourResources();
+    readNamedColors(QStringLiteral(":/colormaps/scene-colors.json"), kSceneKeys);
+    readNamedColors(QStringLiteral(":/colormaps/view-graph-colors.json"), kViewGraphKeys);
     const QString divergingPath = QStringLiteral(":/colormaps/diverging.json");
     const QJsonObject diverging = readObject(divergingPath);
     for (const auto& [key, target] : kDivergingKeys) {
@@ -143,6 +175,23 @@ const SceneColor& kBackgroundTop = palette.backgroundTop;
 const SceneColor& kBackgroundBottom = palette.backgroundBottom;
 
 } // namespace sceneColors
+
+namespace viewGraphColors {
+
+const std::array<SceneColor, 3>& kHiddenQi = viewGraphPalette.hiddenQi;
+const SceneColor& kUnknownQi = viewGraphPalette.unknownQi;
+const SceneColor& kSimplified2D = viewGraphPalette.simplified2D;
+const SceneColor& kSimplified3D = viewGraphPalette.simplified3D;
+const SceneColor& kCurtainFold = viewGraphPalette.curtainFold;
+const SceneColor& kBoundaryCurtainFold = viewGraphPalette.boundaryCurtainFold;
+const SceneColor& kTJunction = viewGraphPalette.tJunction;
+const SceneColor& kYJunction = viewGraphPalette.yJunction;
+const SceneColor& kBifurcation = viewGraphPalette.bifurcation;
+const SceneColor& kCurveEnd = viewGraphPalette.curveEnd;
+const SceneColor& kHiddenFoldCrossing = viewGraphPalette.hiddenFoldCrossing;
+const SceneColor& kUnknownNode = viewGraphPalette.unknownNode;
+
+} // namespace viewGraphColors
 
 } // namespace contour
 

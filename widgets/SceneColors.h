@@ -76,11 +76,12 @@ extern const SceneColor& kBackgroundBottom;
 
 } // namespace sceneColors
 
-// Reads the colours above from the compiled-in resources (once; later calls
-// return at once). It runs when the QCoreApplication is constructed, and
-// every widget calls it before it uses a colour. A resource that is missing
-// or lacks a colour stops the program with a message naming it, since the
-// resources are part of the build.
+// Reads the colours above, and the view graph's (ViewGraphStyle.h), from
+// the compiled-in resources (once; later calls return at once). It runs when
+// the QCoreApplication is constructed, and every widget calls it before it
+// uses a colour. A resource that is missing or lacks a colour stops the
+// program with a message naming it, since the resources are part of the
+// build.
 void loadSceneColors();
 
 } // namespace contour

@@ -4,7 +4,9 @@
 // topological simplification, their colours (by chain or by quantitative
 // invisibility) and one glyph and colour per node type. One place for the 2D
 // view, the 3D view and the legends, so that tests can look for the colours in
-// grabbed images.
+// grabbed images. The colours are data of the application,
+// resources/colormaps/view-graph-colors.json, read by loadSceneColors()
+// (SceneColors.h) with the scene's colours.
 #include "SceneColors.h"
 #include "pipeline/ViewGraph.h"
 
@@ -34,12 +36,20 @@ namespace viewGraphColors {
 
 // QI 1, 2 and 3+: purple, light to lighter (hue ~280°, away from the facing
 // colours yellow and blue and from the black or red of visible curves).
-inline constexpr std::array<SceneColor, 3> kHiddenQi{
-    {{0.45, 0.10, 0.62}, {0.62, 0.36, 0.80}, {0.78, 0.63, 0.90}}};
-inline constexpr SceneColor kUnknownQi{0.60, 0.60, 0.60};
+extern const std::array<SceneColor, 3>& kHiddenQi;
+extern const SceneColor& kUnknownQi;
 // Simplified-away chains, when shown: very faint.
-inline constexpr SceneColor kSimplified2D{0.82, 0.82, 0.82};
-inline constexpr SceneColor kSimplified3D{0.70, 0.70, 0.70};
+extern const SceneColor& kSimplified2D;
+extern const SceneColor& kSimplified3D;
+// One colour per node type (nodeStyle below).
+extern const SceneColor& kCurtainFold;
+extern const SceneColor& kBoundaryCurtainFold;
+extern const SceneColor& kTJunction;
+extern const SceneColor& kYJunction;
+extern const SceneColor& kBifurcation;
+extern const SceneColor& kCurveEnd;
+extern const SceneColor& kHiddenFoldCrossing;
+extern const SceneColor& kUnknownNode;
 // Hidden chains coloured by chain in 3D: the chain's colour scaled by this.
 inline constexpr double kHiddenDarken = 0.55;
 
@@ -75,26 +85,27 @@ inline constexpr int kViewNodeTypeCount = 8;
 inline NodeStyle nodeStyle(ViewNodeType type) {
     switch (type) {
     case ViewNodeType::CurtainFold:
-        return {{0.0, 0.80, 0.95}, NodeGlyph::Square, "curtain fold"};
+        return {viewGraphColors::kCurtainFold, NodeGlyph::Square, "curtain fold"};
     case ViewNodeType::BoundaryCurtainFold:
-        return {{0.15, 0.75, 0.30}, NodeGlyph::Diamond, "boundary curtain fold"};
+        return {viewGraphColors::kBoundaryCurtainFold, NodeGlyph::Diamond, "boundary curtain fold"};
     case ViewNodeType::ImageIntersection:
         // Orange, not red: the 3D view's visible contours are red.
-        return {{1.0, 0.55, 0.0}, NodeGlyph::TriangleUp, "T-junction"};
+        return {viewGraphColors::kTJunction, NodeGlyph::TriangleUp, "T-junction"};
     case ViewNodeType::ContourBoundaryJunction:
-        return {{0.55, 0.33, 0.10}, NodeGlyph::TriangleDown, "Y junction"};
+        return {viewGraphColors::kYJunction, NodeGlyph::TriangleDown, "Y junction"};
     case ViewNodeType::Bifurcation:
-        return {{1.0, 0.40, 0.70}, NodeGlyph::Circle, "bifurcation"};
+        return {viewGraphColors::kBifurcation, NodeGlyph::Circle, "bifurcation"};
     case ViewNodeType::SurfaceIntersectionEnd:
         return {sceneColors::kIntersection, NodeGlyph::Ring, "surface-intersection end"};
     case ViewNodeType::CurveEnd:
-        return {{0.25, 0.25, 0.25}, NodeGlyph::Cross, "curve end"};
+        return {viewGraphColors::kCurveEnd, NodeGlyph::Cross, "curve end"};
     case ViewNodeType::HiddenFoldCrossing:
         // A T-junction's glyph in a muted colour: something occludes there,
         // but it is a mesh fold next to inconsistent faces, not a drawn curve.
-        return {{0.60, 0.50, 0.40}, NodeGlyph::TriangleUp, "crossing behind a hidden mesh fold"};
+        return {viewGraphColors::kHiddenFoldCrossing, NodeGlyph::TriangleUp,
+                "crossing behind a hidden mesh fold"};
     }
-    return {{0.5, 0.5, 0.5}, NodeGlyph::Cross, "unknown"};
+    return {viewGraphColors::kUnknownNode, NodeGlyph::Cross, "unknown"};
 }
 
 // A node whose chains are all hidden (ViewNodeClass::Hidden) is drawn only

@@ -1,9 +1,9 @@
 #include "export/DiagnosticSnapshot.h"
 
+#include "core/AtomicFile.h"
 #include "export/JsonReport.h"
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
-#include "core/AtomicFile.h"
 #include "mesh/io/MeshWriter.h"
 
 #include <atomic>
@@ -26,7 +26,7 @@ std::vector<SnapshotFile> diagnosticSnapshotFiles(const DiagnosticSnapshotRun& r
     std::vector<SnapshotFile> files;
 
     JsonReport report(run.toolName, run.toolVersion, run.meshPath, run.snapshots.front(),
-                      *run.method, run.parameters);
+                      *run.method, run.parameters, sessionPresetName(run.session, *run.method));
     report.addView(run.camera, run.snapshots);
     nlohmann::json json = report.json();
     nlohmann::json names = nlohmann::json::array();

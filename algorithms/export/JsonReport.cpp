@@ -207,17 +207,25 @@ void addMethodMembers(nlohmann::json& target, const nlohmann::json& extra, const
 
 JsonReport::JsonReport(const std::string& toolName, const std::string& toolVersion,
                        const std::string& meshPath, const Snapshot& input, const Method& method,
-                       const ParameterSet& parameters)
+                       const ParameterSet& parameters, const std::string& presetName)
     : method_(&method) {
+    const ParameterPreset* preset = method.preset(presetName);
+    if (!preset)
+        throw std::invalid_argument("report: method " + method.name + " has no preset \"" +
+                                    presetName + "\"");
     report_["tool"] = {{"name", toolName}, {"version", toolVersion}};
     report_["mesh"] = meshJson(meshPath, input);
     nlohmann::json phases = nlohmann::json::array();
     for (const Phase& phase : method.phases)
         phases.push_back(phase.name);
-    report_["method"] = {{"name", method.name},
-                         {"label", method.label},
-                         {"parameters", parameters.toJson()},
-                         {"phases", std::move(phases)}};
+    report_["method"] = {
+        {"name", method.name},
+        {"label", method.label},
+        {"parameters", parameters.toJson()},
+        {"preset",
+         {{"name", preset->name},
+          {"changed", changedFromPreset(method.parameters, *preset, parameters).toJson()}}},
+        {"phases", std::move(phases)}};
     report_["views"] = nlohmann::json::array();
 }
 

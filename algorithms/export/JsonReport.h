@@ -9,6 +9,9 @@
 //              with more than three corners), "triangles" (after
 //              triangulation), "edges", "boundary_edges", "bounding_box"},
 //   "method": {"name", "label", "parameters" (ParameterSet::toJson),
+//              "preset": {"name" (the preset the run started from,
+//                         Method::presets), "changed" {name: value; the
+//                         parameters that differ from it, changedFromPreset}},
 //              "phases" (the method's phase names, in order)},
 //   "views": [{
 //     "index", "camera" (Camera::toJson),
@@ -72,10 +75,12 @@ nlohmann::json viewGraphJson(const ViewGraph& graph);
 
 class JsonReport {
 public:
-    // `input` is the method's input snapshot (makeInputSnapshot).
+    // `input` is the method's input snapshot (makeInputSnapshot);
+    // `presetName` the method's preset the parameters started from. Throws
+    // std::invalid_argument when the method has no such preset.
     JsonReport(const std::string& toolName, const std::string& toolVersion,
                const std::string& meshPath, const Snapshot& input, const Method& method,
-               const ParameterSet& parameters);
+               const ParameterSet& parameters, const std::string& presetName = "default");
 
     // Adds one camera's run: `snapshots[0]` is the input, `snapshots[i]` the
     // state after phase i (Runner::snapshots()).

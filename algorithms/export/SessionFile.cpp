@@ -33,7 +33,8 @@ std::string stringMember(const nlohmann::json& j, const std::string& name) {
 }
 
 // JSON value -> the parameter value of the same JSON type.
-ParameterValue rawParameter(const std::string& name, const nlohmann::json& v) {
+// `field` names it in errors ("parameters.NAME").
+ParameterValue rawParameter(const std::string& field, const nlohmann::json& v) {
     if (v.is_boolean())
         return v.get<bool>();
     if (v.is_number_integer()) {
@@ -46,7 +47,7 @@ ParameterValue rawParameter(const std::string& name, const nlohmann::json& v) {
         return v.get<double>();
     if (v.is_string())
         return v.get<std::string>();
-    throw fieldError("parameters." + name, "must be a boolean, a number or a string");
+    throw fieldError(field, "must be a boolean, a number or a string");
 }
 
 std::string typeText(ParameterType type) {
@@ -101,6 +102,7 @@ nlohmann::json sessionJson(const Session& s) {
     j["mesh"] = s.meshPath;
     j["method"] = s.method;
     j["parameters"] = s.parameters.toJson();
+    j["preset"] = {{"name", s.preset}, {"changed", s.presetChanges.toJson()}};
     j["camera"] = s.camera.toJson();
     if (s.viewCamera)
         j["view_camera"] = s.viewCamera->toJson();
@@ -138,7 +140,22 @@ Session sessionFromJson(const nlohmann::json& j) {
     if (!parameters.is_object())
         throw fieldError("parameters", "must be an object {name: value}");
     for (const auto& [name, value] : parameters.items())
-        s.parameters.set(name, rawParameter(name, value));
+        s.parameters.set(name, rawParameter("parameters." + name, value));
+    if (j.contains("preset")) {
+        const nlohmann::json& preset = j["preset"];
+        if (!preset.is_object())
+            throw fieldError("preset", "must be an object {\"name\", \"changed\"}");
+        s.preset = stringMember(preset, "name");
+        if (s.preset.empty())
+            throw fieldError("preset.name", "is empty");
+        if (preset.contains("changed")) {
+            const nlohmann::json& changed = preset["changed"];
+            if (!changed.is_object())
+                throw fieldError("preset.changed", "must be an object {name: value}");
+            for (const auto& [name, value] : changed.items())
+                s.presetChanges.set(name, rawParameter("preset.changed." + name, value));
+        }
+    }
     try {
         s.camera = Camera::fromJson(member(j, "camera"));
         if (j.contains("view_camera"))
@@ -222,6 +239,25 @@ ParameterSet sessionParameters(const Session& session, const Method& method,
     if (!problems.empty())
         throw std::invalid_argument(problems.front());
     return out;
+}
+
+void setSessionPreset(Session& session, const Method& method, const std::string& presetName) {
+    const ParameterPreset* preset = method.preset(presetName);
+    if (!preset)
+        throw std::invalid_argument("session: method " + method.name + " has no preset \"" +
+                                    presetName + "\"");
+    session.preset = preset->name;
+    session.presetChanges = changedFromPreset(method.parameters, *preset, session.parameters);
+}
+
+std::string sessionPresetName(const Session& session, const Method& method,
+                              std::vector<std::string>* warnings) {
+    if (method.preset(session.preset))
+        return session.preset;
+    if (warnings)
+        warnings->push_back("method " + method.name + " has no preset \"" + session.preset +
+                            "\": the parameters are taken as changed from \"default\"");
+    return "default";
 }
 
 int sessionPhaseTarget(const Session& session, const Method& method,

@@ -12,6 +12,9 @@
 //   "method": method name (contourMethods()),
 //   "parameters": {name: value} every parameter of the method (bool,
 //                 number or choice string, as ParameterSet::toJson),
+//   "preset": optional, {"name": the method's preset the parameters started
+//             from ("default" when absent), "changed": {name: value} the
+//             parameters that differ from it, for readers (changedFromPreset)},
 //   "camera": the analysis camera (Camera::toJson, with its viewport),
 //   "view_camera": optional, the 3D view's own camera (Camera::toJson),
 //   "phase_reached": phases completed (0 = the input),
@@ -43,6 +46,10 @@ struct Session {
     // file reads as int even for a double parameter); sessionParameters()
     // converts them to the method's schema.
     ParameterSet parameters;
+    // The preset the parameters started from, and those that differ from it
+    // (setSessionPreset fills both).
+    std::string preset = "default";
+    ParameterSet presetChanges;
     Camera camera;
     std::optional<Camera> viewCamera;
     int phaseReached = 0;
@@ -70,6 +77,16 @@ Session readSession(const std::string& path);
 // for a value of the wrong type or out of range.
 ParameterSet sessionParameters(const Session& session, const Method& method,
                                std::vector<std::string>* warnings = nullptr);
+
+// Records `presetName` as the preset the session's parameters started from,
+// with the parameters that differ from it. Throws std::invalid_argument when
+// the method has no such preset.
+void setSessionPreset(Session& session, const Method& method, const std::string& presetName);
+
+// The session's preset when `method` has it, else "default" (reported in
+// `warnings`).
+std::string sessionPresetName(const Session& session, const Method& method,
+                              std::vector<std::string>* warnings = nullptr);
 
 // The number of phases to run to reproduce the session with `method`: the
 // phase named "phase_name" when the method has it (phases get inserted as

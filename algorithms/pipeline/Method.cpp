@@ -34,7 +34,9 @@ const ParameterPreset* Method::preset(const std::string& presetName) const {
     for (const ParameterPreset& p : presets)
         if (p.name == presetName)
             return &p;
-    return nullptr;
+    // Every method offers the schema's defaults, listed or not.
+    static const ParameterPreset defaults = defaultPreset();
+    return presetName == defaults.name ? &defaults : nullptr;
 }
 
 const ParameterSpec* Method::parameter(const std::string& parameterName) const {

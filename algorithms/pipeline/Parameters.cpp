@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,6 +26,33 @@ ParameterSet presetValues(const std::vector<ParameterSpec>& schema, const Parame
     for (const auto& [name, value] : preset.values)
         set.set(name, value);
     return set;
+}
+
+namespace {
+
+bool sameValue(const ParameterValue& a, const ParameterValue& b) {
+    const auto number = [](const ParameterValue& v) -> std::optional<double> {
+        if (const int* i = std::get_if<int>(&v))
+            return *i;
+        if (const double* d = std::get_if<double>(&v))
+            return *d;
+        return std::nullopt;
+    };
+    if (const std::optional<double> x = number(a), y = number(b); x && y)
+        return *x == *y;
+    return a == b;
+}
+
+} // namespace
+
+ParameterSet changedFromPreset(const std::vector<ParameterSpec>& schema,
+                               const ParameterPreset& preset, const ParameterSet& values) {
+    const ParameterSet start = presetValues(schema, preset);
+    ParameterSet changed;
+    for (const ParameterSpec& spec : schema)
+        if (values.has(spec.name) && !sameValue(values.value(spec.name), start.value(spec.name)))
+            changed.set(spec.name, values.value(spec.name));
+    return changed;
 }
 
 const ParameterValue& ParameterSet::value(const std::string& name) const {

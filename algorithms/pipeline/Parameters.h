@@ -77,6 +77,12 @@ std::vector<std::string> validateParameters(const std::vector<ParameterSpec>& sc
 // The schema's defaults with the preset's values applied.
 ParameterSet presetValues(const std::vector<ParameterSpec>& schema, const ParameterPreset& preset);
 
+// The values of `values` that differ from the preset's (presetValues): what
+// was changed after starting from it. Numbers compare by value (an int 2
+// equals a double 2.0); parameters the schema or `values` lacks are left out.
+ParameterSet changedFromPreset(const std::vector<ParameterSpec>& schema,
+                               const ParameterPreset& preset, const ParameterSet& values);
+
 std::string toString(const ParameterValue& value);
 
 } // namespace contour

@@ -315,6 +315,8 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         }
         if (app.count("--phase") == 0)
             o.phases = sessionPhaseTarget(session, *o.method, &o.sessionWarnings);
+        if (presetOption->count() == 0)
+            o.preset = sessionPresetName(session, *o.method, &o.sessionWarnings);
     }
     const ParameterPreset* preset = o.method->preset(o.preset);
     if (!preset) {

@@ -32,7 +32,8 @@ struct BatchOptions {
     std::string meshPath;
     const Method* method = nullptr;
     // --preset: the method's preset the parameters start from ("default"
-    // unless given); parameter flags override it.
+    // unless given; with --session, the session's); parameter flags
+    // override it. The JSON report and the session record it.
     std::string preset = "default";
     ParameterSet parameters;
     std::string cameraFile;

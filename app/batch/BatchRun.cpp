@@ -247,6 +247,7 @@ void addDiagnosticSnapshot(RunOutputs& r, const ViewRun& v, std::ostream& out) {
     run.session.meshPath = r.absoluteMesh;
     run.session.method = method.name;
     run.session.parameters = o.parameters;
+    setSessionPreset(run.session, method, o.preset);
     run.session.camera = v.camera;
     run.session.phaseReached = v.runner.completedPhases();
     run.session.phaseName = v.runner.current().phaseName;
@@ -337,7 +338,8 @@ int runBatch(const BatchOptions& o, std::ostream& out) {
     const Method& method = *o.method;
     printRunHeader(out, o.meshPath, input, method, o.parameters);
 
-    JsonReport report(kToolName, CONTOUR_VERSION, o.meshPath, input, method, o.parameters);
+    JsonReport report(kToolName, CONTOUR_VERSION, o.meshPath, input, method, o.parameters,
+                      o.preset);
     const std::unique_ptr<SnapshotImages> images = snapshotImages(o, out);
     RunOutputs outputs{o, absoluteMeshPath(o.meshPath), images.get(), {}};
     StrictFindings findings;

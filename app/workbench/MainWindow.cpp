@@ -35,8 +35,6 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
-#include <QPainter>
-#include <QPixmap>
 #include <QProgressBar>
 #include <QScrollArea>
 #include <QScrollBar>
@@ -46,6 +44,7 @@
 #include <QToolBar>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <cmath>
 
 namespace contour {
 
@@ -60,121 +59,62 @@ QString swatch(const SceneColor& color, const QString& text) {
         .arg(color.toQColor().name(), text.toHtmlEscaped());
 }
 
-// The overlays' names, tool tips and icons (what they look like in the view).
+// The overlays' names, tool tips and icons (resources/icons/overlay-*.svg,
+// drawn in the overlay's colours).
 struct OverlayInfo {
     SceneOverlay overlay;
     const char* name;
     const char* toolTip;
+    const char* icon;
 };
 
 const std::array<OverlayInfo, kSceneOverlayCount> kOverlays{{
     {SceneOverlay::InconsistentFaces, "Inconsistent faces",
      "Outline, drawn over everything, the faces whose VBO disagrees with their facing "
-     "(contour-inconsistent, Bénard 2014 Definition 2)"},
+     "(contour-inconsistent, Bénard 2014 Definition 2)",
+     "overlay-inconsistent-faces"},
     {SceneOverlay::RadialFaces, "Radial faces",
-     "Tint radial triangles (Definition 5) orange, standard radial triangles (§6.3) teal"},
+     "Tint radial triangles (Definition 5) orange, standard radial triangles (§6.3) teal",
+     "overlay-radial-faces"},
     {SceneOverlay::ContourVertices, "C vertices",
-     "Mark the contour vertices (label C, g = 0 at their preimage, §6.2) with white dots"},
+     "Mark the contour vertices (label C, g = 0 at their preimage, §6.2) with white dots",
+     "overlay-contour-vertices"},
     {SceneOverlay::Cusps, "Cusps",
      "Mark the cusp vertices (g = 0 and radial curvature 0, §6.2 d) with large cyan squares, "
-     "drawn over everything"},
+     "drawn over everything",
+     "overlay-cusps"},
     {SceneOverlay::RadialEdges, "Radial edges",
-     "Draw the radial edges p-r (Definition 5, §6.3) in charcoal"},
+     "Draw the radial edges p-r (Definition 5, §6.3) in charcoal", "overlay-radial-edges"},
 }};
 
-QIcon overlayIcon(SceneOverlay overlay) {
-    QPixmap pixmap(16, 16);
-    pixmap.fill(Qt::transparent);
-    QPainter p(&pixmap);
-    p.setRenderHint(QPainter::Antialiasing);
-    const QPolygonF triangle({QPointF(2, 14), QPointF(14, 14), QPointF(8, 2)});
-    switch (overlay) {
-    case SceneOverlay::InconsistentFaces:
-        p.setPen(QPen(sceneColors::kInconsistentOutline.toQColor(), 2.0));
-        p.drawPolygon(triangle);
-        break;
-    case SceneOverlay::RadialFaces:
-        p.setPen(Qt::NoPen);
-        p.setBrush(sceneColors::kRadialTint.toQColor());
-        p.drawPolygon(QPolygonF({QPointF(2, 14), QPointF(8, 14), QPointF(8, 2)}));
-        p.setBrush(sceneColors::kStandardRadialTint.toQColor());
-        p.drawPolygon(QPolygonF({QPointF(8, 14), QPointF(14, 14), QPointF(8, 2)}));
-        break;
-    case SceneOverlay::ContourVertices:
-        p.setPen(QPen(QColor(60, 60, 60), 1.0));
-        p.setBrush(sceneColors::kContourVertex.toQColor());
-        p.drawEllipse(QPointF(8, 8), 4.5, 4.5);
-        break;
-    case SceneOverlay::Cusps:
-        p.setPen(Qt::NoPen);
-        p.setBrush(sceneColors::kCuspVertex.toQColor());
-        p.drawRect(QRectF(2, 2, 12, 12));
-        break;
-    case SceneOverlay::RadialEdges:
-        p.setPen(QPen(sceneColors::kRadialEdge.toQColor(), 2.5));
-        p.drawLine(QPointF(2, 14), QPointF(14, 2));
-        break;
-    }
-    return QIcon(pixmap);
-}
-
+// The view-graph toggles; their icons (resources/icons/view-graph-*.svg) are
+// drawn in the view graph's colours (resources/colormaps/view-graph-colors.json).
 struct ViewGraphToggleInfo {
     const char* name;
     const char* toolTip;
     bool checked; // at start
+    const char* icon;
 };
 
 const std::array<ViewGraphToggleInfo, MainWindow::kViewGraphToggleCount> kViewGraphToggles{{
     {"Hidden curves",
      "Draw the view graph's hidden chains (QI > 0): dashed in the 2D view, thinner and darker "
      "on the surface in the 3D view (orbit to see them), and the nodes that only touch them",
-     true},
+     true, "view-graph-hidden-curves"},
     {"Colour by QI",
      "Colour the view graph's chains by quantitative invisibility (QI 0 black in 2D, red in 3D; "
      "1, 2, 3+ in purples); unchecked: one colour per chain",
-     true},
+     true, "view-graph-colour-by-qi"},
     {"View-graph nodes",
      "Mark the view graph's nodes by type: curtain folds (cusps), boundary curtain folds, "
      "T-junctions, Y junctions, bifurcations, surface-intersection ends, curve ends "
      "(glyphs in 2D, dots over everything in 3D)",
-     true},
+     true, "view-graph-nodes"},
     {"Simplified curves",
      "Draw, very faint, the visible chains that topological simplification hid (Bénard 2014 "
      "§9)",
-     false},
+     false, "view-graph-simplified-curves"},
 }};
-
-QIcon viewGraphIcon(MainWindow::ViewGraphToggle toggle) {
-    QPixmap pixmap(16, 16);
-    pixmap.fill(Qt::transparent);
-    QPainter p(&pixmap);
-    p.setRenderHint(QPainter::Antialiasing);
-    const QColor hidden = viewGraphColors::kHiddenQi[0].toQColor();
-    switch (toggle) {
-    case MainWindow::ViewGraphToggle::HiddenCurves:
-        p.setPen(QPen(hidden, 2.0, Qt::DashLine));
-        p.drawLine(QPointF(1, 12), QPointF(15, 4));
-        break;
-    case MainWindow::ViewGraphToggle::ColourByQi:
-        p.setPen(QPen(Qt::black, 2.0));
-        p.drawLine(QPointF(1, 5), QPointF(15, 5));
-        p.setPen(QPen(hidden, 2.0));
-        p.drawLine(QPointF(1, 11), QPointF(15, 11));
-        break;
-    case MainWindow::ViewGraphToggle::Nodes:
-        p.setPen(Qt::NoPen);
-        p.setBrush(nodeStyle(ViewNodeType::ImageIntersection).color.toQColor());
-        p.drawPolygon(QPolygonF({QPointF(1, 14), QPointF(9, 14), QPointF(5, 6)}));
-        p.setBrush(nodeStyle(ViewNodeType::CurtainFold).color.toQColor());
-        p.drawRect(QRectF(9, 2, 6, 6));
-        break;
-    case MainWindow::ViewGraphToggle::SimplifiedCurves:
-        p.setPen(QPen(viewGraphColors::kSimplified3D.toQColor(), 2.0));
-        p.drawLine(QPointF(1, 12), QPointF(15, 4));
-        break;
-    }
-    return QIcon(pixmap);
-}
 
 } // namespace
 
@@ -322,6 +262,7 @@ void MainWindow::createLayout() {
     meshLabel_ = new QLabel(this);
     phaseLabel_ = new QLabel(this);
     busyBar_ = new QProgressBar(this);
+    busyBar_->setObjectName(QStringLiteral("busyBar"));
     busyBar_->setRange(0, 0);
     busyBar_->setMaximumWidth(160);
     busyBar_->setVisible(false);
@@ -467,7 +408,8 @@ void MainWindow::createOverlayActions(QMenu* viewMenu) {
     overlayBar_->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
     QMenu* menu = viewMenu->addMenu(tr("&Overlays"));
     for (const OverlayInfo& info : kOverlays) {
-        auto* action = new QAction(overlayIcon(info.overlay), tr(info.name), this);
+        auto* action =
+            new QAction(resourceIcon(QString::fromLatin1(info.icon)), tr(info.name), this);
         action->setCheckable(true);
         action->setChecked(sceneView_->isOverlayEnabled(info.overlay));
         action->setToolTip(tr(info.toolTip));
@@ -490,7 +432,8 @@ void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
     for (int i = 0; i < kViewGraphToggleCount; ++i) {
         const ViewGraphToggleInfo& info = kViewGraphToggles[static_cast<size_t>(i)];
         const auto toggle = static_cast<ViewGraphToggle>(i);
-        auto* action = new QAction(viewGraphIcon(toggle), tr(info.name), this);
+        auto* action =
+            new QAction(resourceIcon(QString::fromLatin1(info.icon)), tr(info.name), this);
         action->setCheckable(true);
         action->setChecked(info.checked);
         action->setToolTip(tr(info.toolTip));
@@ -769,12 +712,26 @@ void MainWindow::onBusyChanged(bool busy) {
     updateStatus();
 }
 
-void MainWindow::onProgress(int phase) {
+void MainWindow::onProgress(int phase, double fraction) {
     stepper_->setBusy(true, phase);
     const Method* method = run_->method();
-    if (method && phase < static_cast<int>(method->phases.size()))
-        phaseLabel_->setText(
-            tr("running %1…").arg(QString::fromStdString(method->phases[phase].name)));
+    const QString name =
+        method && phase >= 0 && phase < static_cast<int>(method->phases.size())
+            ? QString::fromStdString(method->phases[static_cast<size_t>(phase)].name)
+            : QString();
+    if (!name.isEmpty())
+        phaseLabel_->setText(tr("running %1…").arg(name));
+    // A phase that reports how far it is fills the bar; until it does (and
+    // for phases that never do) the bar is busy without a fraction.
+    if (fraction > 0.0) {
+        busyBar_->setRange(0, kBusyBarSteps);
+        busyBar_->setValue(static_cast<int>(std::lround(std::min(fraction, 1.0) * kBusyBarSteps)));
+        busyBar_->setFormat(name.isEmpty() ? QStringLiteral("%p%") : name + QStringLiteral(" %p%"));
+        busyBar_->setTextVisible(true);
+    } else {
+        busyBar_->setRange(0, 0);
+        busyBar_->setTextVisible(false);
+    }
 }
 
 void MainWindow::onRunIdle() {
@@ -959,6 +916,10 @@ void MainWindow::updateStatus() {
             tr("no mesh — File > Open, drop a file, or pass one on the command line"));
     }
     busyBar_->setVisible(run_->isBusy());
+    if (!run_->isBusy()) {
+        busyBar_->setRange(0, 0);
+        busyBar_->setTextVisible(false);
+    }
     if (run_->isBusy()) {
         phaseLabel_->setText(run_->jobName() + QStringLiteral("…"));
         return;

@@ -153,6 +153,11 @@ public:
     void reportError(const QString& title, const QString& message) { showError(title, message); }
     SessionController* sessionController() const { return sessions_; }
     QAction* cancelAction() const { return cancelAction_; }
+    // The status bar's busy bar: shown while a phase job runs; busy without a
+    // fraction until the running phase reports one, then the fraction of
+    // kBusyBarSteps, with the phase's name.
+    QProgressBar* busyBar() const { return busyBar_; }
+    static constexpr int kBusyBarSteps = 1000;
 
     // Linked selection and the inspector (the logic is in
     // SelectionController): the right dock's inspector, the selection shared
@@ -193,7 +198,8 @@ private:
     void rebuildRunner(int completed);
     // The run controller's reports.
     void onBusyChanged(bool busy);
-    void onProgress(int phase);
+    // Entering a phase (fraction 0) or its progress fraction in (0, 1].
+    void onProgress(int phase, double fraction);
     void onRunIdle();
     void showRunnerState();
     void updateActions();

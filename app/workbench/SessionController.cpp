@@ -115,6 +115,13 @@ std::optional<Session> SessionController::capture(QString* error) const {
     s.method = window_->methodName().toStdString();
     const Runner* runner = window_->runner();
     s.parameters = runner ? runner->parameters() : window_->methodPanel()->parameters();
+    if (const Method* method = findMethod(s.method)) {
+        try {
+            setSessionPreset(s, *method, window_->methodPanel()->presetName().toStdString());
+        } catch (const std::invalid_argument&) {
+            setSessionPreset(s, *method, "default");
+        }
+    }
     s.camera = runner ? runner->camera() : *camera;
     s.viewCamera = window_->sceneView()->viewCamera();
     s.phaseReached = window_->completedPhases();
@@ -159,6 +166,7 @@ bool SessionController::open(const QString& path) {
     ParameterSet parameters;
     std::vector<std::string> warnings;
     int phases = 0;
+    std::string preset;
     std::shared_ptr<const PolygonMesh> mesh;
     try {
         session = readSession(path.toStdString());
@@ -172,6 +180,7 @@ bool SessionController::open(const QString& path) {
             throw std::runtime_error(path.toStdString() + ": " + e.what());
         }
         phases = sessionPhaseTarget(session, *method, &warnings);
+        preset = sessionPresetName(session, *method, &warnings);
         QApplication::setOverrideCursor(Qt::WaitCursor);
         try {
             mesh = std::make_shared<const PolygonMesh>(readMesh(session.meshPath));
@@ -188,6 +197,7 @@ bool SessionController::open(const QString& path) {
                              QString::fromStdString(session.method), parameters, session.camera,
                              phases))
         return false;
+    window_->methodPanel()->setStartingPreset(QString::fromStdString(preset));
     applyDisplay(session);
     if (session.viewCamera)
         window_->sceneView()->setViewCamera(*session.viewCamera);
