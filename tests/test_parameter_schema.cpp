@@ -71,8 +71,6 @@ bool isOffValue(const ParameterSpec& spec, const ParameterValue& value) {
     return false;
 }
 
-}
-
 } // namespace
 
 class TestParameterSchema : public QObject {

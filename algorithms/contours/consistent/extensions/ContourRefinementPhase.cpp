@@ -14,6 +14,7 @@
 #include "contours/consistent/extensions/ExtensionPhases.h"
 #include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
+#include "contours/consistent/phases/ContourInsertion.h"
 #include "contours/consistent/phases/OptimizationPhaseSupport.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "contours/consistent/predicates/FaceClassification.h"
@@ -81,11 +82,12 @@ struct ContourRefinementOptions {
     int rootIterations = 100;
 };
 
-// root-tolerance and root-max-iterations are contour insertion's (§6.2 e),
-// the bound its post-condition checks.
+// The root search's settings are contour insertion's (§6.2 e), read through
+// its own options, the bound its post-condition checks.
 ContourRefinementOptions contourRefinementOptions(const ParameterSet& p) {
+    const ContourRootOptions roots = ContourRootOptions::read(p);
     return {p.getDouble("contour-refinement-pixels"), p.getInt("contour-refinement-depth"),
-            p.getDouble("root-tolerance"), p.getInt("root-max-iterations")};
+            roots.tolerance, roots.maxIterations};
 }
 
 void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
