@@ -418,5 +418,56 @@ inline constexpr CounterName kCuspEndFacesSearchedAfterRefinement{
 inline constexpr CounterName kCuspEndDiscs{"cusp-end-discs",
                                            "discs re-triangulated at a cusp's radial end"};
 
+// Cusp refinement (edits/CuspRefinement.cpp, the cusp-refinement phase).
+inline constexpr CounterName kCuspsRefinedAround{"cusps-refined-around", "cusps refined around"};
+inline constexpr CounterName kFacesRefined{"faces-refined", "faces refined"};
+inline constexpr CounterName kEdgesHalved{"edges-halved", "edges halved"};
+inline constexpr CounterName kCuspEdgesHalved{"cusp-edges-halved", "cusp edges halved"};
+inline constexpr CounterName kHalvingsCancelledNoChart{
+    "halvings-cancelled-no-chart", "halvings cancelled (no chart or parameter fold)"};
+inline constexpr CounterName kHalvingsCancelled3DFold{"halvings-cancelled-3d-fold",
+                                                      "halvings cancelled (3D fold)"};
+inline constexpr CounterName kHalvingsCancelledOnContour{"halvings-cancelled-on-contour",
+                                                         "halvings cancelled (midpoint on g = 0)"};
+inline constexpr CounterName kFlipsToThe14Pattern{"flips-to-the-1-4-pattern",
+                                                  "flips to the 1-4 pattern"};
+inline constexpr CounterName kSignCrossingSplitsAfterHalving{"sign-crossing-splits-after-halving",
+                                                             "sign-crossing splits after halving"};
+
+// Contour refinement.
+inline constexpr CounterName kContourEdgesMeasured{"contour-edges-measured",
+                                                   "contour edges measured"};
+inline constexpr CounterName kContourEdgesFarther{
+    "contour-edges-farther", "contour edges farther than contour-refinement-pixels"};
+inline constexpr CounterName kContourEdgesSplit{"contour-edges-split", "contour edges split"};
+inline constexpr CounterName kContourSplitsRejected{"contour-splits-rejected",
+                                                    "splits rejected (consistency, fold or VBO)"};
+inline constexpr CounterName kEdgesLeftAtDepth{"edges-left-at-depth",
+                                               "edges left at contour-refinement-depth"};
+inline constexpr CounterName kEdgesWithoutContourPoint{
+    "edges-without-contour-point",
+    "edges without a contour point (no chart, no sign change or unconverged)"};
+inline constexpr CounterName kLargestChordDistanceBefore{
+    "largest-chord-distance-before", "largest chord-to-contour distance before (px)"};
+inline constexpr CounterName kLargestChordDistanceAfter{
+    "largest-chord-distance-after", "largest chord-to-contour distance after (px)"};
+
+// Normal wiggle: rejected offsets and pair moves.
+inline constexpr CounterName kOffsetsRejected3DFold{"offsets-rejected-3d-fold",
+                                                    "offsets rejected (3D fold)"};
+inline constexpr CounterName kVertexPairsTried{"vertex-pairs-tried", "vertex pairs tried"};
+inline constexpr CounterName kVertexPairsMoved{"vertex-pairs-moved", "vertex pairs moved"};
+inline constexpr CounterName kRingPairsMoved{
+    "ring-pairs-moved",
+    "of them, a corner and a neighbour off the face (normal-wiggle-ring-pairs)"};
+
+// Radial extension: the cusps' radial ends pushed.
+inline constexpr CounterName kCuspRadialEndsPushesTried{"cusp-radial-ends-pushes-tried",
+                                                        "cusp radial ends: pushes tried"};
+inline constexpr CounterName kCuspRadialEndsPushed{"cusp-radial-ends-pushed",
+                                                   "cusp radial ends: pushed"};
+inline constexpr CounterName kCuspRadialEndsFlipsOfPushes{"cusp-radial-ends-flips-of-pushes",
+                                                          "cusp radial ends: flips of pushes"};
+
 } // namespace counters
 } // namespace contour

@@ -247,16 +247,15 @@ void refineAroundCusps(ConsistentMesh& m, const CuspRefinementSettings& set,
 }
 
 void publishCuspRefinementCounts(Snapshot& s, const CuspRefinementCounts& n) {
-    s.setCounter("cusps refined around", static_cast<double>(n.cusps));
-    s.setCounter("faces refined", static_cast<double>(n.faces));
-    s.setCounter("edges halved", static_cast<double>(n.splits));
-    s.setCounter("cusp edges halved", static_cast<double>(n.cuspEdgeSplits));
-    s.setCounter("halvings cancelled (no chart or parameter fold)",
-                 static_cast<double>(n.rejectedChart));
-    s.setCounter("halvings cancelled (3D fold)", static_cast<double>(n.rejected3d));
-    s.setCounter("halvings cancelled (midpoint on g = 0)", static_cast<double>(n.rejectedContour));
-    s.setCounter("flips to the 1-4 pattern", static_cast<double>(n.flips));
-    s.setCounter("sign-crossing splits after halving", static_cast<double>(n.crossingSplits));
+    s.setCounter(counters::kCuspsRefinedAround, static_cast<double>(n.cusps));
+    s.setCounter(counters::kFacesRefined, static_cast<double>(n.faces));
+    s.setCounter(counters::kEdgesHalved, static_cast<double>(n.splits));
+    s.setCounter(counters::kCuspEdgesHalved, static_cast<double>(n.cuspEdgeSplits));
+    s.setCounter(counters::kHalvingsCancelledNoChart, static_cast<double>(n.rejectedChart));
+    s.setCounter(counters::kHalvingsCancelled3DFold, static_cast<double>(n.rejected3d));
+    s.setCounter(counters::kHalvingsCancelledOnContour, static_cast<double>(n.rejectedContour));
+    s.setCounter(counters::kFlipsToThe14Pattern, static_cast<double>(n.flips));
+    s.setCounter(counters::kSignCrossingSplitsAfterHalving, static_cast<double>(n.crossingSplits));
 }
 
 } // namespace contour::consistent

@@ -169,16 +169,14 @@ void runContourRefinement(const PhaseContext& ctx, Snapshot& s) {
     // outlines: the next phase (contour-refinement-retriangulation)
     // searches them again.
     publish(s, m);
-    s.setCounter("contour edges measured", static_cast<double>(st.measured));
-    s.setCounter("contour edges farther than contour-refinement-pixels",
-                 static_cast<double>(st.farther));
-    s.setCounter("contour edges split", static_cast<double>(st.split));
-    s.setCounter("splits rejected (consistency, fold or VBO)", static_cast<double>(st.rejected));
-    s.setCounter("edges left at contour-refinement-depth", static_cast<double>(st.depthLimited));
-    s.setCounter("edges without a contour point (no chart, no sign change or unconverged)",
-                 static_cast<double>(st.missed));
-    s.setCounter("largest chord-to-contour distance before (px)", st.largestBefore);
-    s.setCounter("largest chord-to-contour distance after (px)", st.largestAfter);
+    s.setCounter(counters::kContourEdgesMeasured, static_cast<double>(st.measured));
+    s.setCounter(counters::kContourEdgesFarther, static_cast<double>(st.farther));
+    s.setCounter(counters::kContourEdgesSplit, static_cast<double>(st.split));
+    s.setCounter(counters::kContourSplitsRejected, static_cast<double>(st.rejected));
+    s.setCounter(counters::kEdgesLeftAtDepth, static_cast<double>(st.depthLimited));
+    s.setCounter(counters::kEdgesWithoutContourPoint, static_cast<double>(st.missed));
+    s.setCounter(counters::kLargestChordDistanceBefore, st.largestBefore);
+    s.setCounter(counters::kLargestChordDistanceAfter, st.largestAfter);
     if (pixels > 0.0 && st.largestAfter > pixels)
         s.notes.push_back("contour refinement: some contour edges still stray up to " +
                           std::to_string(st.largestAfter) +

@@ -289,11 +289,10 @@ void runNormalWiggle(const PhaseContext& ctx, Snapshot& s) {
     publish(s, m);
     publishTally(s, tally, "vertices", "normal-wiggle-max-sweeps");
     publishNormalOffsetStats(s, offsets);
-    s.setCounter("offsets rejected (3D fold)", static_cast<double>(st.rejectedFold));
-    s.setCounter("vertex pairs tried", static_cast<double>(st.pairsTried));
-    s.setCounter("vertex pairs moved", static_cast<double>(st.pairsAccepted));
-    s.setCounter("of them, a corner and a neighbour off the face (normal-wiggle-ring-pairs)",
-                 static_cast<double>(st.ringPairsAccepted));
+    s.setCounter(counters::kOffsetsRejected3DFold, static_cast<double>(st.rejectedFold));
+    s.setCounter(counters::kVertexPairsTried, static_cast<double>(st.pairsTried));
+    s.setCounter(counters::kVertexPairsMoved, static_cast<double>(st.pairsAccepted));
+    s.setCounter(counters::kRingPairsMoved, static_cast<double>(st.ringPairsAccepted));
 }
 
 } // namespace

@@ -721,9 +721,9 @@ void runRadialExtension(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kFaceWithTwoRadialEndsBothMoved,
                  static_cast<double>(ext.stats.pairMoves));
     s.setCounter(counters::kUnconvergedRadialRoots, static_cast<double>(ext.stats.unconverged));
-    s.setCounter("cusp radial ends: pushes tried", static_cast<double>(ext.stats.pushTried));
-    s.setCounter("cusp radial ends: pushed", static_cast<double>(ext.stats.pushMoves));
-    s.setCounter("cusp radial ends: flips of pushes", static_cast<double>(ext.stats.pushFlips));
+    s.setCounter(counters::kCuspRadialEndsPushesTried, static_cast<double>(ext.stats.pushTried));
+    s.setCounter(counters::kCuspRadialEndsPushed, static_cast<double>(ext.stats.pushMoves));
+    s.setCounter(counters::kCuspRadialEndsFlipsOfPushes, static_cast<double>(ext.stats.pushFlips));
     if (m.edgeTags().empty() || s.counter(counters::kRadialEdges, 0.0) == 0.0)
         s.notes.push_back("radial edge extension: the mesh has no radial edges (radial edge "
                           "insertion, §6.3 g, did not run or inserted none), nothing to extend");
