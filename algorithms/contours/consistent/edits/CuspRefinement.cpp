@@ -227,18 +227,6 @@ void refineOnce(ConsistentMesh& m, const CuspRefinementSettings& set,
 
 } // namespace
 
-CuspRefinementSettings cuspRefinementSettings(const ParameterSet& p) {
-    CuspRefinementSettings set;
-    set.rings = p.getInt("cusp-refinement-rings");
-    set.levels = p.getInt("cusp-refinement-levels");
-    set.pixels = p.getDouble("cusp-refinement-pixels");
-    set.cuspEdges = p.getBool("cusp-refinement-cusp-edges");
-    set.crossingSamples = p.getInt("crossing-samples");
-    set.crossingRounds = p.getInt("crossing-search-rounds");
-    set.rootIterations = p.getInt("root-max-iterations");
-    return set;
-}
-
 void refineAroundCusps(ConsistentMesh& m, const CuspRefinementSettings& set,
                        const std::function<bool(const Vec3&)>& select, int phase,
                        CuspRefinementCounts& n) {

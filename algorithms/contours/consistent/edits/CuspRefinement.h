@@ -26,9 +26,6 @@ struct CuspRefinementSettings {
     int crossingRounds = 1;
     int rootIterations = 100; // bisection steps placing the cusp on its edge
 };
-// The cusp-refinement-* parameters, §6.1's crossing-samples and
-// crossing-search-rounds, and root-max-iterations (§6.2 e).
-CuspRefinementSettings cuspRefinementSettings(const ParameterSet& p);
 
 struct CuspRefinementCounts {
     long long cusps = 0, faces = 0, splits = 0, cuspEdgeSplits = 0, rejectedChart = 0,

@@ -6,6 +6,8 @@
 #include "contours/consistent/extensions/CuspRefinementTargets.h"
 #include "contours/consistent/extensions/ExtensionPhases.h"
 #include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/phases/ContourInsertion.h"
+#include "contours/consistent/phases/Initialization.h"
 #include "contours/consistent/phases/PhaseChecks.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "contours/consistent/predicates/FaceClassification.h"
@@ -20,6 +22,22 @@ struct CuspRefinementOptions {
     bool everyCusp = false; // cusp-refinement
     CuspRefinementSettings settings;
 };
+
+// The cusp-refinement-* parameters, with initialization's crossing search
+// (§6.1) and contour insertion's root iterations (§6.2 e) read through those
+// phases' own options.
+CuspRefinementSettings cuspRefinementSettings(const ParameterSet& p) {
+    CuspRefinementSettings set;
+    set.rings = p.getInt("cusp-refinement-rings");
+    set.levels = p.getInt("cusp-refinement-levels");
+    set.pixels = p.getDouble("cusp-refinement-pixels");
+    set.cuspEdges = p.getBool("cusp-refinement-cusp-edges");
+    const CrossingSearchOptions crossing = CrossingSearchOptions::read(p);
+    set.crossingSamples = crossing.samples;
+    set.crossingRounds = crossing.rounds;
+    set.rootIterations = ContourRootOptions::read(p).maxIterations;
+    return set;
+}
 
 CuspRefinementOptions cuspRefinementOptions(const ParameterSet& p) {
     return {p.getBool("cusp-refinement"), cuspRefinementSettings(p)};

@@ -1,5 +1,6 @@
 // Initialization (Bénard 2014 §6.1, Fig. 15a-c).
 #include "contours/consistent/phases/ConsistentPhases.h"
+#include "contours/consistent/phases/Initialization.h"
 #include "contours/consistent/phases/PhaseChecks.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "surface/SurfaceTessellation.h"
@@ -9,6 +10,13 @@
 #include <tbb/parallel_for.h>
 
 namespace contour::consistent {
+
+CrossingSearchOptions CrossingSearchOptions::read(const ParameterSet& p) {
+    CrossingSearchOptions o;
+    o.samples = p.getInt("crossing-samples");
+    o.rounds = p.getInt("crossing-search-rounds");
+    return o;
+}
 
 namespace {
 
@@ -21,8 +29,9 @@ struct InitializationOptions {
     static InitializationOptions read(const ParameterSet& p) {
         InitializationOptions o;
         o.charts = ChartOptions::read(p);
-        o.crossingSamples = p.getInt("crossing-samples");
-        o.crossingRounds = p.getInt("crossing-search-rounds");
+        const CrossingSearchOptions crossing = CrossingSearchOptions::read(p);
+        o.crossingSamples = crossing.samples;
+        o.crossingRounds = crossing.rounds;
         o.deepestFirst = p.getBool("crossing-split-deepest");
         return o;
     }
