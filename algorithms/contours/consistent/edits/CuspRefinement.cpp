@@ -3,6 +3,7 @@
 
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/mesh/MeshQueries.h"
+#include "contours/consistent/numerics/Bisection.h"
 #include "contours/consistent/predicates/FoldTest.h"
 
 #include <algorithm>
@@ -20,15 +21,20 @@ Vec3 cuspPoint(const ConsistentMesh& m, Index x, Index y, int iterations) {
     if (m.vertex(x).label != VertexLabel::Front)
         std::swap(x, y);
     const ConsistentMesh::Segment xy = m.segment(m.vertex(x).preimage, m.vertex(y).preimage);
-    double lo = 0.0, hi = 1.0;
-    for (int it = 0; it < iterations; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        const std::optional<Preimage> p = xy.at(mid);
-        if (!p)
-            return 0.5 * (m.vertex(x).position + m.vertex(y).position);
-        (m.evaluateWithoutCurvature(*p).g > 0.0 ? lo : hi) = mid;
-    }
-    const std::optional<Preimage> p = xy.at(0.5 * (lo + hi));
+    // g > 0 at x (t = 0): the end whose sign a positive sample shares.
+    BisectionOptions options;
+    options.maxIterations = iterations;
+    const BisectionResult<double> r = bisect(
+        [&](double t) -> std::optional<double> {
+            const std::optional<Preimage> p = xy.at(t);
+            if (!p)
+                return std::nullopt;
+            return m.evaluateWithoutCurvature(*p).g;
+        },
+        [](double g) { return g; }, BisectionBracket{0.0, 1.0, 1.0, -1.0}, options);
+    if (r.outcome == BisectionOutcome::Failed)
+        return 0.5 * (m.vertex(x).position + m.vertex(y).position);
+    const std::optional<Preimage> p = xy.at(0.5 * (r.bracket.lo + r.bracket.hi));
     return p ? m.evaluateWithoutCurvature(*p).position
              : 0.5 * (m.vertex(x).position + m.vertex(y).position);
 }
