@@ -91,7 +91,7 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 const Preimage px = m.vertex(x).preimage, py = m.vertex(y).preimage;
                 const ConsistentMesh::Segment xy = m.segment(px, py);
                 // g decides; the radial curvature is evaluated for the root
-                // kept, below. g > 0 at x (lo), < 0 at y (hi).
+                // kept, below. g > 0 at x (the bracket's lower end), < 0 at y (its upper end).
                 BisectionOptions search;
                 search.step = BisectionStep::Midpoint;
                 search.sign = BisectionSign::Positive;
