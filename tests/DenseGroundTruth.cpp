@@ -387,19 +387,61 @@ GroundTruth DenseGroundTruth::compute(const Camera& camera) const {
 namespace {
 
 // Pairs of image segments that cross properly. Segments sharing an end
-// point never do, so no adjacency test is needed. Quadratic, for the few
-// thousand segments of a test view.
+// point never do, so no adjacency test is needed. The pairs tested are those
+// whose bounding boxes share a cell of a uniform grid (about one segment per
+// cell); a pair is counted only in the cell holding the lower corner of the
+// two boxes' overlap, so each pair is decided once, by the same predicate as
+// a test of every pair.
 int properCrossings(const std::vector<std::array<Vec2, 2>>& segments) {
     const auto orient = [](const Vec2& a, const Vec2& b, const Vec2& p) {
         return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
     };
+    const auto cross = [&](size_t i, size_t j) {
+        const auto& [a, b] = segments[i];
+        const auto& [p, q] = segments[j];
+        return orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
+    };
+    if (segments.empty())
+        return 0;
+    Vec2 lo = segments[0][0], hi = lo;
+    for (const auto& s : segments)
+        for (const Vec2& p : s) {
+            lo = lo.cwiseMin(p);
+            hi = hi.cwiseMax(p);
+        }
+    const int cells =
+        std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segments.size()))), 1, 1024);
+    const Vec2 size = (hi - lo).cwiseMax(Vec2(1e-300, 1e-300));
+    const auto cellOf = [&](double x, double low, double extent) {
+        return std::clamp(static_cast<int>((x - low) / extent * cells), 0, cells - 1);
+    };
+    std::vector<std::vector<size_t>> grid(static_cast<size_t>(cells) * cells);
+    std::vector<std::array<Vec2, 2>> boxes(segments.size());
+    for (size_t i = 0; i < segments.size(); ++i) {
+        boxes[i] = {segments[i][0].cwiseMin(segments[i][1]),
+                    segments[i][0].cwiseMax(segments[i][1])};
+        for (int y = cellOf(boxes[i][0].y(), lo.y(), size.y());
+             y <= cellOf(boxes[i][1].y(), lo.y(), size.y()); ++y)
+            for (int x = cellOf(boxes[i][0].x(), lo.x(), size.x());
+                 x <= cellOf(boxes[i][1].x(), lo.x(), size.x()); ++x)
+                grid[static_cast<size_t>(y) * cells + x].push_back(i);
+    }
     int crossings = 0;
-    for (size_t i = 0; i < segments.size(); ++i)
-        for (size_t j = i + 1; j < segments.size(); ++j) {
-            const auto& [a, b] = segments[i];
-            const auto& [p, q] = segments[j];
-            crossings +=
-                orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
+    for (int y = 0; y < cells; ++y)
+        for (int x = 0; x < cells; ++x) {
+            const std::vector<size_t>& in = grid[static_cast<size_t>(y) * cells + x];
+            for (size_t u = 0; u < in.size(); ++u)
+                for (size_t w = u + 1; w < in.size(); ++w) {
+                    const size_t i = in[u], j = in[w];
+                    const Vec2 overlapLo = boxes[i][0].cwiseMax(boxes[j][0]);
+                    if (overlapLo.x() > std::min(boxes[i][1].x(), boxes[j][1].x()) ||
+                        overlapLo.y() > std::min(boxes[i][1].y(), boxes[j][1].y()))
+                        continue;
+                    if (cellOf(overlapLo.x(), lo.x(), size.x()) != x ||
+                        cellOf(overlapLo.y(), lo.y(), size.y()) != y)
+                        continue;
+                    crossings += cross(i, j);
+                }
         }
     return crossings;
 }

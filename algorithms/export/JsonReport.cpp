@@ -155,6 +155,7 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
                          {"far_chains", {node.farChains[0], node.farChains[1]}},
                          {"qi_step", node.qiStep},
                          {"unreliable", node.unreliable},
+                         {"smooth_cusp", node.smoothCusp},
                          {"local_occluders", node.localOccluders}});
     }
     nlohmann::json conflicts = nlohmann::json::array();

@@ -340,6 +340,15 @@ inline constexpr CounterName kCurtainFoldsOccludingTheConvexSide{
     "curtain-folds-occluding-the-convex-side", "curtain folds occluding the convex side"};
 inline constexpr CounterName kMixedConvexityChains{"mixed-convexity-chains",
                                                    "mixed-convexity chains"};
+// Consistent contours, curtain folds from the surface's cusps.
+inline constexpr CounterName kCurtainFoldsAtCusps{"curtain-folds-at-cusps",
+                                                  "curtain folds at cusps"};
+inline constexpr CounterName kCuspFoldsSidedByCurvature{"cusp-folds-sided-by-curvature",
+                                                        "cusp folds sided by curvature"};
+inline constexpr CounterName kCurtainFoldsByTheNearFaceFallback{
+    "curtain-folds-by-the-near-face-fallback", "curtain folds by the near-face fallback"};
+inline constexpr CounterName kZigZagVerticesIgnored{"zig-zag-vertices-ignored",
+                                                    "zig-zag vertices ignored"};
 inline constexpr CounterName kUnreliableNearFaceNodes{"unreliable-near-face-nodes",
                                                       "unreliable near-face nodes"};
 inline constexpr CounterName kSurfaceIntersectionsSeconds{"surface-intersections-seconds",

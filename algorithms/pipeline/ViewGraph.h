@@ -132,6 +132,11 @@ struct ViewNode {
     // applies.
     int qiStep = 0;
     bool unreliable = false; // a near-face test below its threshold (Bénard 2014 fn. 3)
+    // A curtain fold at a cusp of the smooth surface (consistent contours: a
+    // cusp vertex, Bénard 2014 §6.2 d), its far side and step decided from
+    // the surface's radial curvature; false for curtain folds found by a
+    // mesh test (convexity, near face, one-ring).
+    bool smoothCusp = false;
     // Nodes at a mesh vertex (curtain folds, Y junctions, bifurcations),
     // parallel to `chains`: how many faces of the vertex's one-ring occlude
     // that chain's first edge next to the vertex (tutorial app. C.2 test).

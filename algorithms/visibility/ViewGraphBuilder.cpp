@@ -27,6 +27,9 @@ struct Cut {
     // one-ring occluders of each (tutorial app. C.2).
     bool hasBefore = false, hasAfter = false;
     int occBefore = 0, occAfter = 0;
+    // At a smooth cusp: the radial curvature of the branch before/after
+    // (branchCurvature()).
+    double kappaBefore = 0.0, kappaAfter = 0.0;
     // Far: the part of the far curve before the cut is the occluded one.
     bool occludedBefore = false;
     Index chainBefore = kInvalidIndex, chainAfter = kInvalidIndex;
@@ -59,8 +62,16 @@ public:
             ViewGraphBuildStats& stats)
         : mesh_(*input.mesh), curves_(*input.curves), secondFaces_(input.secondFaces),
           orientation_(*input.faceOrientation),
-          facing_(input.facing ? input.facing : input.faceOrientation), camera_(camera),
-          options_(options), stats_(stats), cuts_(curves_.size()) {}
+          facing_(input.facing ? input.facing : input.faceOrientation),
+          cuspVertex_(input.cuspVertex), radialCurvature_(input.radialCurvature),
+          faceInconsistent_(input.faceInconsistent), camera_(camera), options_(options),
+          stats_(stats), cuts_(curves_.size()) {
+        if (options_.foldTest == CurtainFoldTest::SmoothCusps &&
+            (!cuspVertex_ || !radialCurvature_ || !faceInconsistent_))
+            throw std::invalid_argument(
+                "buildViewGraph: smooth-cusp curtain folds need cusp, radial curvature and "
+                "inconsistent-face fields");
+    }
 
     ViewGraph build() {
         classifyCurveEdges();
@@ -80,6 +91,9 @@ private:
     const std::vector<std::vector<Index>>* secondFaces_;
     const std::vector<int>& orientation_;
     const std::vector<int>* facing_;
+    const std::vector<std::uint8_t>* cuspVertex_;
+    const std::vector<double>* radialCurvature_;
+    const std::vector<std::uint8_t>* faceInconsistent_;
     const Camera& camera_;
     const ViewGraphOptions& options_;
     ViewGraphBuildStats& stats_;
@@ -127,7 +141,8 @@ private:
                 // Edge ab with triangles abd and bae is concave iff
                 // FRONTSIDE(a, b, d, e) > 0 (tutorial app. C).
                 result.concave = frontSide(a, b, p1, p2) > 0;
-            } else if (options_.foldTest == CurtainFoldTest::NearFace) {
+            } else if (options_.foldTest == CurtainFoldTest::NearFace ||
+                       options_.foldTest == CurtainFoldTest::SmoothCusps) {
                 // Bénard 2014 §8.1: exterior iff the near face (footnote 3)
                 // has a front-facing VBO.
                 const NearFace near = nearFace(mesh_, camera_, e);
@@ -163,6 +178,39 @@ private:
     }
 
     void addCut(Index c, Cut cut) { cuts_[c].push_back(cut); }
+
+    // The radial curvature of curve c's branch leaving point k forwards
+    // (after) or backwards: the sum over the next few curve vertices, up to
+    // another cusp (the value at the cusp itself is about 0; a few vertices
+    // away its sign is the branch's). NaN values are skipped; 0 when none.
+    double branchCurvature(Index c, Index k, bool after) const {
+        constexpr int kVertices = 3;
+        const Polyline& line = curves_[c];
+        const Index n = static_cast<Index>(line.points.size());
+        double sum = 0.0;
+        for (int j = 1; j <= kVertices; ++j) {
+            Index i = after ? k + j : k - j;
+            if (line.closed)
+                i = ((i % n) + n) % n;
+            else if (i < 0 || i >= n)
+                break;
+            const Index v = line.points[static_cast<size_t>(i)].vertex;
+            if (v == kInvalidIndex || (*cuspVertex_)[static_cast<size_t>(v)])
+                break;
+            const double kappa = (*radialCurvature_)[static_cast<size_t>(v)];
+            if (std::isfinite(kappa))
+                sum += kappa;
+        }
+        return sum;
+    }
+
+    // Whether a face of v's one-ring is inconsistent (SmoothCusps).
+    bool nextToInconsistentFace(Index v) const {
+        for (Index f : vertexFaces(mesh_, v))
+            if ((*faceInconsistent_)[static_cast<size_t>(f)] != 0)
+                return true;
+        return false;
+    }
 
     // Curtain folds, boundary curtain folds, Y junctions, bifurcations and
     // open ends at mesh vertices (tutorial §4.3 items 2–5, §4.6 steps 3–4).
@@ -204,6 +252,9 @@ private:
             bool isNode = false;
             bool unreliable = false;
             bool localOnly = false;
+            bool smoothCusp = false; // SmoothCusps: a cusp vertex
+            bool fallback = false;   // SmoothCusps: the near-face test next to inconsistency
+            bool zigZag = false;     // SmoothCusps: a mesh-only fold, not made a node
         };
         std::vector<int> occ(at.size(), 0);
         std::vector<Decision> decisions(groups.size() - 1);
@@ -240,9 +291,20 @@ private:
                 // and the other is not (on consistent meshes the generator
                 // also runs over edges that are no fold of the mesh).
                 const int o0 = occ[first], o1 = occ[first + 1];
-                d.isNode = e0.concave != e1.concave || o0 != o1;
-                d.localOnly = e0.concave == e1.concave && o0 != o1;
-                d.unreliable = e0.unreliable || e1.unreliable;
+                const bool meshFold = e0.concave != e1.concave || o0 != o1;
+                if (options_.foldTest == CurtainFoldTest::SmoothCusps &&
+                    (*cuspVertex_)[static_cast<size_t>(v)]) {
+                    d.isNode = d.smoothCusp = true;
+                } else if (options_.foldTest == CurtainFoldTest::SmoothCusps &&
+                           !nextToInconsistentFace(v)) {
+                    d.isNode = false;
+                    d.zigZag = meshFold;
+                } else {
+                    d.isNode = meshFold;
+                    d.localOnly = e0.concave == e1.concave && o0 != o1;
+                    d.unreliable = e0.unreliable || e1.unreliable;
+                    d.fallback = meshFold && options_.foldTest == CurtainFoldTest::SmoothCusps;
+                }
             } else {
                 // Tutorial app. C.2: exactly one of the two boundary edges is
                 // occluded by a face of the one-ring.
@@ -255,6 +317,9 @@ private:
         for (size_t g = 0; g + 1 < groups.size(); ++g) {
             const Decision& d = decisions[g];
             stats_.localOnlyFolds += d.localOnly;
+            stats_.zigZagsIgnored += d.zigZag;
+            stats_.fallbackFolds += d.fallback;
+            stats_.smoothCuspFolds += d.smoothCusp;
             if (!d.isNode)
                 continue;
             const size_t first = groups[g], count = groups[g + 1] - first;
@@ -262,6 +327,7 @@ private:
             const Index node = addNode(d.type, mesh_.position(v));
             graph_.nodes[node].meshVertex = v;
             graph_.nodes[node].unreliable = d.unreliable;
+            graph_.nodes[node].smoothCusp = d.smoothCusp;
             stats_.unreliableFolds += d.unreliable;
             // One cut per (curve, point); both edges of a curve through the
             // vertex share it.
@@ -276,9 +342,13 @@ private:
                 if (incidence.after) {
                     cut.hasAfter = true;
                     cut.occAfter = occ[first + i];
+                    if (d.smoothCusp)
+                        cut.kappaAfter = branchCurvature(incidence.curve, incidence.point, true);
                 } else {
                     cut.hasBefore = true;
                     cut.occBefore = occ[first + i];
+                    if (d.smoothCusp)
+                        cut.kappaBefore = branchCurvature(incidence.curve, incidence.point, false);
                 }
             }
             for (const auto& [key, cut] : perPoint)
@@ -814,6 +884,9 @@ private:
 
     void fillNodes() {
         // Curtain folds need the concavity of the chains on either side.
+        // Per node, parallel to node.chains for vertex cuts: the branches'
+        // radial curvature (smooth cusps only).
+        std::vector<std::vector<double>> branchKappa(graph_.nodes.size());
         for (Index c = 0; c < static_cast<Index>(curves_.size()); ++c) {
             for (const Cut& cut : cuts_[c]) {
                 ViewNode& node = graph_.nodes[cut.node];
@@ -822,10 +895,12 @@ private:
                     if (cut.hasBefore && cut.chainBefore != kInvalidIndex) {
                         node.chains.push_back(cut.chainBefore);
                         node.localOccluders.push_back(cut.occBefore);
+                        branchKappa[cut.node].push_back(cut.kappaBefore);
                     }
                     if (cut.hasAfter && cut.chainAfter != kInvalidIndex) {
                         node.chains.push_back(cut.chainAfter);
                         node.localOccluders.push_back(cut.occAfter);
+                        branchKappa[cut.node].push_back(cut.kappaAfter);
                     }
                     break;
                 case Cut::Role::Near:
@@ -855,7 +930,36 @@ private:
                 }
             }
         }
-        for (ViewNode& node : graph_.nodes) {
+        for (size_t i = 0; i < graph_.nodes.size(); ++i) {
+            ViewNode& node = graph_.nodes[i];
+            if (node.smoothCusp && node.chains.size() == 2) {
+                // Which branch is occluded is a local overlap fact (tutorial
+                // §4.3 definition (b), app. C.2): the one-ring faces of the
+                // cusp vertex over each branch's first edge. It is not the
+                // sign of κr: on a torus the exterior branch of a cusp next
+                // to the hole is the deeper one (one sheet behind the
+                // interior branch). Where the one-ring covers both branches
+                // alike, the interior branch (κr > 0 with the outward-normal
+                // sign of SurfaceFields.h) is taken as the far one. The step
+                // is one sheet, as on a smooth surface.
+                const int o0 = node.localOccluders[0], o1 = node.localOccluders[1];
+                const double k0 = branchKappa[i][0], k1 = branchKappa[i][1];
+                int farSide;
+                if (o0 != o1) {
+                    farSide = o1 > o0 ? 1 : 0;
+                } else {
+                    ++stats_.cuspFoldsSidedByCurvature;
+                    farSide = k1 > k0 ? 1 : 0;
+                }
+                node.nearChains = {node.chains[1 - farSide], kInvalidIndex};
+                node.farChains = {kInvalidIndex, node.chains[farSide]};
+                // A loop with this one node (its other cusp was not found)
+                // cannot step into itself.
+                node.qiStep = node.chains[0] != node.chains[1] ? 1 : 0;
+                if (node.qiStep == 0)
+                    ++stats_.foldsWithoutStep;
+                continue;
+            }
             if (node.type == ViewNodeType::CurtainFold ||
                 node.type == ViewNodeType::BoundaryCurtainFold) {
                 if (node.chains.size() != 2)

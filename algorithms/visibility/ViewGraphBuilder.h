@@ -10,6 +10,7 @@
 #include "mesh/TriangleMesh.h"
 #include "pipeline/ViewGraph.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace contour {
@@ -18,8 +19,16 @@ namespace contour {
 // curtain folds (tutorial §4.3 item 3; Bénard 2014 §8.1).
 enum class CurtainFoldTest {
     Convexity, // mesh contours: concave iff FRONTSIDE(a, b, d, e) > 0 (tutorial app. C)
-    NearFace,  // consistent contours: the near face's VBO (Bénard 2014 §8.1, footnote 3)
-    None,      // interpolated contours lie inside faces: no mesh curtain folds
+    NearFace,  // the near face's VBO (Bénard 2014 §8.1, footnote 3) at every vertex
+    // Consistent contours: the curtain folds are the smooth surface's cusps
+    // (the mesh's cusp vertices, g = 0 and κr changing sign, §6.2 d), each
+    // sided by the one-ring overlap test at the cusp vertex (tutorial
+    // app. C.2) and stepping one sheet. Other contour vertices are no nodes
+    // (zig-zags of the polyline), except next to an inconsistent face, where
+    // the near-face test of §8.1 still applies (the mesh may fold where the
+    // surface does not, §8.4).
+    SmoothCusps,
+    None, // interpolated contours lie inside faces: no mesh curtain folds
 };
 
 struct ViewGraphOptions {
@@ -54,6 +63,12 @@ struct ViewGraphInput {
     // decides which edges are folds that occlude. Defaults to
     // faceOrientation.
     const std::vector<int>* facing = nullptr;
+    // CurtainFoldTest::SmoothCusps: per vertex, a cusp of the smooth surface
+    // (non-zero) and the radial curvature (NaN where undefined); per face,
+    // inconsistent (non-zero: the near-face test applies at its corners).
+    const std::vector<std::uint8_t>* cuspVertex = nullptr;
+    const std::vector<double>* radialCurvature = nullptr;
+    const std::vector<std::uint8_t>* faceInconsistent = nullptr;
 };
 
 // What the builder saw, for the phase's counters and notes.
@@ -75,6 +90,15 @@ struct ViewGraphBuildStats {
     long long nonFoldNear = 0;           // ... whose near contour edge is no mesh fold
     long long foldOccluderEdges = 0;     // mesh fold edges on no curve, added as occluders
     long long localOnlyFolds = 0;        // curtain folds found by the one-ring test alone
+    // SmoothCusps: curtain folds at the surface's cusps; those whose one-ring
+    // covers both branches alike (κr chose the interior one); folds by the
+    // near-face fallback next to inconsistent faces; and contour vertices
+    // away from them where the near-face or one-ring test alone would have
+    // made a fold (zig-zags of the polyline: no node).
+    long long smoothCuspFolds = 0;
+    long long cuspFoldsSidedByCurvature = 0;
+    long long fallbackFolds = 0;
+    long long zigZagsIgnored = 0;
     double sweepSeconds = 0.0;
 };
 

@@ -32,6 +32,7 @@ constexpr const char* kVisibility = "visibility";
 constexpr const char* kCheckRays = "visibility-check-rays";
 constexpr const char* kNearFaceEpsilon = "near-face-epsilon";
 constexpr const char* kShortChain = "ambiguity-short-chain";
+constexpr const char* kCuspFolds = "curtain-folds-from-cusps";
 constexpr const char* kSurfaceIntersections = "surface-intersections";
 constexpr const char* kVotes = "visibility-votes";
 constexpr const char* kIgnoredFaces = "visibility-ignored-faces";
@@ -86,6 +87,7 @@ struct VisibilityOptions {
     bool checkRays = false;            // visibility-check-rays
     double nearFaceEpsilon = 0.0;      // consistent: near-face-epsilon
     double shortChainPixels = 0.0;     // consistent: ambiguity-short-chain
+    bool smoothCuspFolds = false;      // consistent: curtain-folds-from-cusps
     int votes = 0;                     // interpolated: visibility-votes
     std::string ignoredFaces;          // interpolated: visibility-ignored-faces
     static VisibilityOptions read(VisibilityFlavor flavor, const ParameterSet& p) {
@@ -96,6 +98,7 @@ struct VisibilityOptions {
         if (flavor == VisibilityFlavor::Consistent) {
             o.nearFaceEpsilon = p.getDouble(kNearFaceEpsilon);
             o.shortChainPixels = p.getDouble(kShortChain);
+            o.smoothCuspFolds = p.getBool(kCuspFolds);
         }
         if (flavor == VisibilityFlavor::Interpolated) {
             o.votes = p.getInt(kVotes);
@@ -141,6 +144,16 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     // of 3 runs.)
     ViewGraphBuildStats built;
     std::shared_ptr<ViewGraph> graph;
+    // Consistent contours: cusp vertices and inconsistent faces (the
+    // consistent mesh's fields), for the curtain folds and §8.4.
+    const std::vector<std::uint8_t> cuspVertex =
+        flavor == VisibilityFlavor::Consistent
+            ? byteField(s, fields::kCusp, false, static_cast<size_t>(mesh.vertexCount()))
+            : std::vector<std::uint8_t>{};
+    const std::vector<std::uint8_t> faceInconsistent =
+        flavor == VisibilityFlavor::Consistent
+            ? byteField(s, fields::kConsistent, true, static_cast<size_t>(mesh.faceCount()))
+            : std::vector<std::uint8_t>{};
     double buildSeconds = 0.0;
     auto intersections = [&] {
         if (parameters.surfaceIntersections) {
@@ -172,9 +185,11 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                                      orientationField + "' face field");
 
         ViewGraphOptions options;
-        options.foldTest = flavor == VisibilityFlavor::Mesh         ? CurtainFoldTest::Convexity
-                           : flavor == VisibilityFlavor::Consistent ? CurtainFoldTest::NearFace
-                                                                    : CurtainFoldTest::None;
+        options.foldTest = flavor == VisibilityFlavor::Mesh ? CurtainFoldTest::Convexity
+                           : flavor == VisibilityFlavor::Consistent
+                               ? (parameters.smoothCuspFolds ? CurtainFoldTest::SmoothCusps
+                                                             : CurtainFoldTest::NearFace)
+                               : CurtainFoldTest::None;
         if (flavor == VisibilityFlavor::Consistent)
             options.nearFaceEpsilon = parameters.nearFaceEpsilon;
         // Exact mesh visibility needs every fold of the mesh as an occluder
@@ -193,6 +208,16 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         input.secondFaces = &secondFaces;
         input.faceOrientation = orientation->labels();
         input.facing = facing && facing->labels() ? facing->labels() : orientation->labels();
+        if (options.foldTest == CurtainFoldTest::SmoothCusps) {
+            const std::vector<double>* kappa = fieldValues<double>(
+                s, fields::kRadialCurvature, FieldLocation::Vertex, mesh.vertexCount());
+            if (!kappa)
+                throw std::runtime_error("visibility: smooth-cusp curtain folds need the "
+                                         "per-vertex radial_curvature field");
+            input.radialCurvature = kappa;
+            input.cuspVertex = &cuspVertex;
+            input.faceInconsistent = &faceInconsistent;
+        }
         const auto tBuild = std::chrono::steady_clock::now();
         graph = std::make_shared<ViewGraph>(buildViewGraph(input, ctx.camera, options, &built));
         buildSeconds = secondsSince(tBuild);
@@ -246,11 +271,8 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         consistent.nearFaceEpsilon = parameters.nearFaceEpsilon;
         consistent.shortChainPixels = parameters.shortChainPixels;
         const auto tConsistent = std::chrono::steady_clock::now();
-        resolveConsistentVisibility(
-            *graph, mesh, ctx.camera, rays,
-            byteField(s, fields::kConsistent, true, static_cast<size_t>(mesh.faceCount())),
-            byteField(s, fields::kCusp, false, static_cast<size_t>(mesh.vertexCount())), consistent,
-            keepRays);
+        resolveConsistentVisibility(*graph, mesh, ctx.camera, rays, faceInconsistent, cuspVertex,
+                                    consistent, keepRays);
         consistentSeconds = secondsSince(tConsistent);
     }
     const double raySeconds = sceneSeconds + secondsSince(tQi);
@@ -315,8 +337,19 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter(counters::kCurtainFoldsOccludingTheConvexSide,
                  static_cast<double>(built.convexFarFolds));
     s.setCounter(counters::kMixedConvexityChains, static_cast<double>(built.mixedConvexityChains));
-    if (flavor == VisibilityFlavor::Consistent)
+    if (flavor == VisibilityFlavor::Consistent) {
         s.setCounter(counters::kUnreliableNearFaceNodes, static_cast<double>(unreliable));
+        if (parameters.smoothCuspFolds) {
+            s.setCounter(counters::kCurtainFoldsAtCusps,
+                         static_cast<double>(built.smoothCuspFolds));
+            s.setCounter(counters::kCuspFoldsSidedByCurvature,
+                         static_cast<double>(built.cuspFoldsSidedByCurvature));
+            s.setCounter(counters::kCurtainFoldsByTheNearFaceFallback,
+                         static_cast<double>(built.fallbackFolds));
+            s.setCounter(counters::kZigZagVerticesIgnored,
+                         static_cast<double>(built.zigZagsIgnored));
+        }
+    }
     s.setCounter(counters::kSurfaceIntersectionsSeconds, intersectionSeconds);
     s.setCounter(counters::kViewGraphSeconds, buildSeconds);
     s.setCounter(counters::kSweepSeconds, built.sweepSeconds);
@@ -343,6 +376,9 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     if (perType[ViewNodeType::HiddenFoldCrossing] > 0)
         note << ", " << perType[ViewNodeType::HiddenFoldCrossing]
              << " crossings behind mesh folds off the drawn curves";
+    if (flavor == VisibilityFlavor::Consistent && parameters.smoothCuspFolds)
+        note << ": " << built.smoothCuspFolds << " at the surface's cusps, " << built.fallbackFolds
+             << " by the near-face test next to inconsistent faces";
     note << "), " << graph->rayTests << " ray tests";
     s.notes.push_back(note.str());
     if (!graph->conflicts.empty())
@@ -465,6 +501,17 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
              1.0,
              0.0,
              2.0,
+             {}});
+        m.parameters.push_back(
+            {kCuspFolds,
+             "Curtain folds from cusps",
+             "Curtain folds only at the surface's cusps (the cusp vertices of §6.2 d), sided by "
+             "the one-ring test, step 1; the near-face test (§8.1) only next to inconsistent "
+             "faces. Off: the near-face test at every contour vertex (§8.1). Not in the paper.",
+             ParameterType::Bool,
+             true,
+             0,
+             0,
              {}});
         m.parameters.push_back({kShortChain,
                                 "Short chain (px)",

@@ -2,11 +2,14 @@
 // What every benchmark prints about the machine and the process: the load
 // average (figures taken on a busy machine say so), a /proc/self/status
 // field (resident memory), and where a named model of ../shared/meshes is.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace contour::bench {
 
@@ -41,6 +44,99 @@ inline std::optional<std::filesystem::path> findMeshFile(const std::filesystem::
         if (std::filesystem::is_regular_file(p, error))
             return p;
     }
+    return std::nullopt;
+}
+
+// Writing 5 to clear_refs resets VmHWM to the current RSS (Linux >= 4.0), so
+// each mesh gets its own peak. False when the kernel refuses.
+inline bool resetPeakRss() {
+    std::ofstream out("/proc/self/clear_refs");
+    out << "5";
+    out.flush();
+    return static_cast<bool>(out);
+}
+
+inline std::string csvEscape(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos)
+        return s;
+    std::string out = "\"";
+    for (const char c : s)
+        out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+inline std::vector<std::string> splitCsvLine(const std::string& line) {
+    std::vector<std::string> cells(1);
+    bool quoted = false;
+    for (size_t i = 0; i < line.size(); ++i) {
+        const char c = line[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                cells.back() += '"';
+                ++i;
+            } else if (c == '"') {
+                quoted = false;
+            } else {
+                cells.back() += c;
+            }
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == ',') {
+            cells.emplace_back();
+        } else if (c != '\r') {
+            cells.back() += c;
+        }
+    }
+    return cells;
+}
+
+// ConTesse's published rows: Input -> Runtime (seconds per view).
+inline std::map<std::string, double> readPublished(const std::string& path) {
+    std::map<std::string, double> rows;
+    std::ifstream in(path);
+    std::string line;
+    if (!std::getline(in, line))
+        return rows;
+    const std::vector<std::string> header = splitCsvLine(line);
+    const auto column = [&](const std::string& name) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+    };
+    const int input = column("Input"), runtime = column("Runtime");
+    if (input < 0 || runtime < 0)
+        return rows;
+    while (std::getline(in, line)) {
+        const std::vector<std::string> cells = splitCsvLine(line);
+        if (static_cast<int>(cells.size()) <= std::max(input, runtime))
+            continue;
+        try {
+            rows[cells[static_cast<size_t>(input)]] =
+                std::stod(cells[static_cast<size_t>(runtime)]);
+        } catch (const std::exception&) {
+        }
+    }
+    return rows;
+}
+
+// The published row for a mesh file name: the same name, else the only row
+// named NAME_something (pawn -> pawn_open), else the only row whose name
+// starts the file's name followed by '_' (AngelaFace_000150 -> AngelaFace).
+inline std::optional<std::string> matchPublished(const std::map<std::string, double>& rows,
+                                                 const std::string& name) {
+    if (rows.count(name))
+        return name;
+    std::vector<std::string> candidates;
+    for (const auto& [row, runtime] : rows)
+        if (row.rfind(name + "_", 0) == 0)
+            candidates.push_back(row);
+    if (candidates.size() == 1)
+        return candidates.front();
+    candidates.clear();
+    for (const auto& [row, runtime] : rows)
+        if (name.rfind(row + "_", 0) == 0)
+            candidates.push_back(row);
+    if (candidates.size() == 1)
+        return candidates.front();
     return std::nullopt;
 }
 

@@ -161,6 +161,7 @@ Method makeConsistentContourMethod() {
              {"include-boundaries", true},
              {"surface-intersections", true},
              {"near-face-epsilon", 1.0},
+             {"curtain-folds-from-cusps", false},
          }},
     };
     m.outputs = consistentOutputs();
