@@ -1,65 +1,185 @@
-// The patch search of the consistent method (PatchSearchPhase.cpp, an
-// extension of Bénard 2014 §6.4 past the fixed point of its one-edit moves):
-// over the 26-view protocol on spot, bob and the procedural tori, the phase
-// never increases the inconsistent faces of a view, violates no
-// post-condition (Debug builds enforce them: a violation throws), publishes
-// a valid mesh (two more faces per inserted vertex), and lowers the
-// inconsistent faces where it helps to a fraction of its input (what the
-// mesh would be without it) below a ceiling
-// (tests/baselines/test_patch_search.json). Switched off, it passes the mesh
-// through.
+// The patch search of the consistent method on its own (edits/PatchSearch.h:
+// compound moves, not in the paper, extending the edits of Bénard 2014 §6.3
+// h and §6.4), without a phase around it. Its input is the mesh the method
+// hands it: the bumpy torus (resolution 12) after vertex removal, from each
+// of the 26 protocol views (a few inconsistent faces each, some views none).
+// On each view the search must leave an oriented manifold with no more
+// inconsistent faces, its tagged edges and CC edges kept, C vertices only
+// moved along the contour, and counts that agree with the mesh (a new vertex
+// adds two faces, accepted moves are the inserted plus the relocated
+// vertices). Where it accepts nothing (no inconsistent face, every move
+// rejected, or every patch kind off) the mesh is left exactly as it was.
+// The patch-search phase publishes what the search returns on the same
+// input, and a cancelled search leaves a valid mesh. The phase over whole
+// runs: test_consistent_patch_search.
 #include "ContourTestSupport.h"
-#include "pipeline/FieldNames.h"
+#include "MeshChecks.h"
+#include "contours/consistent/edits/LocalEdit.h"
+#include "contours/consistent/edits/PatchSearch.h"
+#include "contours/consistent/extensions/PatchSearchOptions.h"
+#include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "pipeline/CounterNames.h"
 
 #include <QtTest>
-#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 using namespace contour;
+using namespace contour::consistent;
 using namespace contour::testing;
 
 namespace {
 
-std::shared_ptr<const PolygonMesh> loadShape(const std::string& name) {
-    return sampleOrShape(name, 12);
+// The method's defaults, without the cusp retry (a branch after the phase:
+// the snapshots of one straight run).
+const Overrides kOverrides{{"cusp-retry", false}};
+
+// One view's input to the search (the mesh after vertex removal, the
+// settings the method's parameters give) and what the patch-search phase
+// published from it.
+struct ViewInput {
+    ConsistentMesh mesh;
+    PatchSearchSettings settings;
+    int phase = 0;
+    Snapshot published;
+};
+
+ViewInput viewInput(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera) {
+    const MethodRun r = run("consistent", cage, camera, kOverrides, "patch-search");
+    const ParameterSet p = parametersOf(*findMethod("consistent"), kOverrides);
+    ConsistentMesh m = reload(PhaseContext(camera, p), r.phase("vertex-removal"));
+    const PatchSearchSettings s = PatchSearchOptions::read(p).settings(m);
+    const Snapshot& published = r.phase("patch-search");
+    return {std::move(m), s, published.phaseIndex, published};
 }
 
-// The consistent method with the patch search on and its radial-end moves
-// (patch-radial-ends) off unless `overrides` say otherwise, and the cusp
-// retry off: it reruns the method when faces remain, and the final counts
-// should show the patch search's own effect. A phase that fails (a
-// PhaseError) fails the slot, with its message.
-MethodRun runView(const std::shared_ptr<const PolygonMesh>& cage, const Camera& camera,
-                  const Overrides& overrides = {}) {
-    Overrides p{{"patch-search", true}, {"patch-radial-ends", false}, {"cusp-retry", false}};
-    for (const Overrides::Entry& e : overrides.entries())
-        p.set(e.name, e.value);
-    MethodRun r = run("consistent", cage, camera, p);
-    if (r.snapshots.size() != findMethod("consistent")->phases.size() + 1)
-        throw std::runtime_error("the method stopped after phase " +
-                                 std::to_string(r.snapshots.size() - 1));
-    return r;
+// Every view's input, computed once for the suite.
+const std::vector<ViewInput>& inputs() {
+    static const std::vector<ViewInput> all = [] {
+        const std::shared_ptr<const PolygonMesh> cage = shape("bumpy-torus", 12);
+        std::vector<ViewInput> out;
+        for (const Camera& camera : Camera::views26(cage->boundingBox(), Viewport{800, 600}))
+            out.push_back(viewInput(cage, camera));
+        return out;
+    }();
+    return all;
 }
 
-// The first post-condition a phase of the run violates, or empty.
-QString firstViolation(const MethodRun& run) {
-    for (const Snapshot& s : run.snapshots)
-        for (const InvariantCheck& c : s.invariants)
-            if (c.violations != 0)
-                return QString("%1: %2 (%3)")
-                    .arg(QString::fromStdString(s.phaseName))
-                    .arg(QString::fromStdString(c.name))
-                    .arg(QString::fromStdString(c.firstExample));
+bool sameBits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// "" when a and b hold the same vertices (every field, to the bit), faces,
+// face phases and edge tags; else the first difference.
+std::string meshDifference(const ConsistentMesh& a, const ConsistentMesh& b) {
+    if (a.vertexCount() != b.vertexCount() || a.faceCount() != b.faceCount())
+        return "sizes differ: " + std::to_string(a.vertexCount()) + " / " +
+               std::to_string(a.faceCount()) + " against " + std::to_string(b.vertexCount()) +
+               " / " + std::to_string(b.faceCount());
+    for (Index v = 0; v < a.vertexCount(); ++v) {
+        const MeshVertex &x = a.vertex(v), &y = b.vertex(v);
+        bool same = x.preimage.face == y.preimage.face && sameBits(x.preimage.u, y.preimage.u) &&
+                    sameBits(x.preimage.v, y.preimage.v) && sameBits(x.g, y.g) &&
+                    sameBits(x.normalOffset, y.normalOffset) && x.cusp == y.cusp &&
+                    x.label == y.label && x.provenance == y.provenance && x.phase == y.phase;
+        for (int d = 0; d < 3; ++d)
+            same = same && sameBits(x.position[d], y.position[d]) &&
+                   sameBits(x.normal[d], y.normal[d]);
+        if (!same)
+            return "vertex " + std::to_string(v) + " differs";
+    }
+    for (Index f = 0; f < a.faceCount(); ++f)
+        if (a.face(f) != b.face(f) || a.facePhase(f) != b.facePhase(f))
+            return "face " + std::to_string(f) + " differs";
+    if (a.edgeTags() != b.edgeTags())
+        return "edge tags differ";
     return {};
 }
 
-std::vector<Camera> views(const PolygonMesh& cage) {
-    std::vector<Camera> all = Camera::views26(cage.boundingBox(), Viewport{800, 600});
-#ifndef __OPTIMIZE__
-    // Debug: every post-condition enforced, at many times the time.
-    all.resize(3);
-#endif
-    return all;
+long long contourEdges(const ConsistentMesh& m) {
+    long long n = 0;
+    for (const auto& [a, b] : m.edges())
+        n += m.vertex(a).label == VertexLabel::Contour && m.vertex(b).label == VertexLabel::Contour;
+    return n;
+}
+
+// Faces that are not counter-clockwise in a common chart (appendix B).
+long long parameterFolds(const ConsistentMesh& m) {
+    long long n = 0;
+    for (Index f = 0; f < m.faceCount(); ++f) {
+        const std::optional<int> o = m.parameterOrientation(f);
+        n += !o || *o <= 0;
+    }
+    return n;
+}
+
+// "" when `after` is what a search that returned `r` may leave of `before`;
+// else the first broken rule.
+std::string brokenRule(const ConsistentMesh& before, const ConsistentMesh& after,
+                       const PatchSearchSettings& set, const PatchSearchResult& r) {
+    const PatchSearchStats& n = r.moves;
+    if (const std::string e = connectivityErrors(after); !e.empty())
+        return "not an oriented manifold: " + e;
+    const auto in = static_cast<long long>(inconsistentFaces(before).size());
+    const auto out = static_cast<long long>(inconsistentFaces(after).size());
+    if (r.faces.before != in)
+        return "tally.before " + std::to_string(r.faces.before) + ", the input has " +
+               std::to_string(in);
+    if (out > in)
+        return "inconsistent faces " + std::to_string(in) + " -> " + std::to_string(out);
+    if (r.faces.accepted > r.faces.tried)
+        return "more moves accepted than faces tried";
+    if (r.faces.accepted != n.inserted + n.relocated)
+        return "accepted " + std::to_string(r.faces.accepted) + ", inserted + relocated " +
+               std::to_string(n.inserted + n.relocated);
+    if (n.slid > n.relocated || n.newRadial > r.faces.accepted || n.newRadialCusps > n.newRadial)
+        return "move kinds do not add up";
+    if (n.rejected + n.unplanned > n.samples || (n.samples > 0 && n.patches == 0))
+        return "samples do not add up";
+    if (r.faces.tried > 0 && r.faces.sweeps == 0)
+        return "faces tried without a sweep";
+    if (after.vertexCount() != before.vertexCount() + n.inserted ||
+        after.faceCount() != before.faceCount() + 2 * n.inserted)
+        return "a new vertex must add one vertex and two faces";
+    if (parameterFolds(after) > parameterFolds(before))
+        return "a parameter-space fold appeared";
+    if (contourEdges(after) != contourEdges(before))
+        return "CC edges " + std::to_string(contourEdges(before)) + " -> " +
+               std::to_string(contourEdges(after));
+    // Tagged edges stay (vertex indices are kept: nothing is compacted); the
+    // only new tags are the new radial edges.
+    long long newTags = 0;
+    for (const auto& [key, tag] : after.edgeTags()) {
+        const auto was = before.edgeTags().find(key);
+        if (was == before.edgeTags().end()) {
+            if (tag != kRadialEdge)
+                return "a new edge tag other than radial";
+            ++newTags;
+        } else if (was->second != tag)
+            return "an edge tag changed";
+    }
+    if (after.edgeTags().size() != before.edgeTags().size() + static_cast<size_t>(newTags) ||
+        newTags != n.newRadial)
+        return "tagged edges: " + std::to_string(before.edgeTags().size()) + " -> " +
+               std::to_string(after.edgeTags().size()) + ", new radial edges " +
+               std::to_string(n.newRadial);
+    // C vertices stay C, no vertex becomes one, and a C vertex that moved
+    // lies on the contour; cusps never move.
+    for (Index v = 0; v < after.vertexCount(); ++v) {
+        const MeshVertex& x = after.vertex(v);
+        const bool wasC =
+            v < before.vertexCount() && before.vertex(v).label == VertexLabel::Contour;
+        if ((x.label == VertexLabel::Contour) != wasC)
+            return "vertex " + std::to_string(v) + " changed to or from C";
+        if (!wasC || x.position == before.vertex(v).position)
+            continue;
+        if (x.cusp)
+            return "cusp " + std::to_string(v) + " moved";
+        if (!(std::abs(x.g) <= set.rootTolerance))
+            return "C vertex " + std::to_string(v) + " moved off the contour";
+    }
+    return {};
 }
 
 } // namespace
@@ -67,333 +187,156 @@ std::vector<Camera> views(const PolygonMesh& cage) {
 class TestPatchSearch : public QObject {
     Q_OBJECT
 private slots:
-    void neverWorseOverTheProtocol_data() {
-        QTest::addColumn<QString>("shapeName");
-        // Ceiling on the inconsistent faces after the phase as a fraction
-        // of those before it, summed over the 26 views (Release only).
-        // Without the phase the fraction is 1.
-        QTest::addColumn<double>("ceiling");
-        for (const char* shape : {"spot", "bob", "bumpy-torus", "torus"})
-            QTest::addRow("%s", shape)
-                << QString(shape)
-                << baseline("test_patch_search",
-                            std::string(shape) + ": inconsistent faces after / before the phase");
-    }
-
-    void neverWorseOverTheProtocol() {
-        QFETCH(QString, shapeName);
-        QFETCH(double, ceiling);
-        const std::shared_ptr<const PolygonMesh> cage = loadShape(shapeName.toStdString());
-        const std::vector<Camera> cameras = views(*cage);
-        long long before = 0, after = 0, inserted = 0, relocated = 0, finalFaces = 0;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const MethodRun run = runView(cage, cameras[v]);
-            const QString violation = firstViolation(run);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = run.phase("patch-search");
-            const Snapshot& previous = run.phase("vertex-removal");
-            const double in = s.counter(counters::kInconsistentFacesBefore, -1.0);
-            const double out = s.counter(counters::kInconsistentFaces, -1.0);
-            QVERIFY(in >= 0.0 && out >= 0.0);
-            // The phase's input is what the previous phase published.
-            QCOMPARE(in, previous.counter(counters::kInconsistentFaces, -2.0));
-            QVERIFY2(out <= in, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(in).arg(out)));
-            const TriangleMesh& mesh = *s.mesh;
-            for (Index f = 0; f < mesh.faceCount(); ++f) {
-                const Triangle& t = mesh.triangle(f);
-                QVERIFY(t[0] != t[1] && t[1] != t[2] && t[2] != t[0]);
+    // Every view: the rules of brokenRule(); where nothing was accepted,
+    // the very same mesh. Over the views the search must meet each case at
+    // least once: faces removed, faces tried and every move rejected, no
+    // inconsistent face at all.
+    void keepsTheMeshValidOnEveryView() {
+        long long in = 0, out = 0;
+        int improved = 0, rejectedAll = 0, consistent = 0;
+        for (size_t v = 0; v < inputs().size(); ++v) {
+            const ViewInput& input = inputs()[v];
+            const ConsistentMesh& before = input.mesh;
+            QVERIFY2(connectivityErrors(before).empty(), qPrintable(QString("view %1").arg(v)));
+            ConsistentMesh m = before;
+            const PatchSearchResult r = searchPatches(m, input.settings, input.phase);
+            const std::string broken = brokenRule(before, m, input.settings, r);
+            QVERIFY2(broken.empty(), qPrintable(QString("view %1: %2").arg(v).arg(broken.c_str())));
+            if (r.faces.accepted == 0) {
+                const std::string changed = meshDifference(before, m);
+                QVERIFY2(changed.empty(),
+                         qPrintable(
+                             QString("view %1, nothing accepted: %2").arg(v).arg(changed.c_str())));
             }
-            QCOMPARE(static_cast<Index>(s.field(fields::kConsistent)->labels()->size()),
-                     mesh.faceCount());
-            // A new vertex adds two faces; a relocation none.
-            QCOMPARE(static_cast<double>(mesh.faceCount()),
-                     previous.counter(counters::kFaces) +
-                         2.0 * s.counter(counters::kVerticesInserted));
-            before += static_cast<long long>(in);
-            after += static_cast<long long>(out);
-            inserted += static_cast<long long>(s.counter(counters::kVerticesInserted));
-            relocated += static_cast<long long>(s.counter(counters::kVerticesRelocated));
-            finalFaces +=
-                static_cast<long long>(run.snapshots.back().counter(counters::kInconsistentFaces));
+            const auto faces = static_cast<long long>(inconsistentFaces(m).size());
+            in += r.faces.before;
+            out += faces;
+            improved += faces < r.faces.before;
+            rejectedAll += r.faces.tried > 0 && r.faces.accepted == 0;
+            consistent += r.faces.before == 0;
         }
-        qInfo("%s, %d views: inconsistent faces %lld before the patch search, %lld after it "
-              "(%lld vertices inserted, %lld relocated), %lld at the end",
-              qPrintable(shapeName), static_cast<int>(cameras.size()), before, after, inserted,
-              relocated, finalFaces);
-#ifdef __OPTIMIZE__
-        QVERIFY(before > 0);
-        QVERIFY2(static_cast<double>(after) <= ceiling * static_cast<double>(before),
-                 qPrintable(QString("%1 > %2 x %3").arg(after).arg(ceiling).arg(before)));
-#else
-        Q_UNUSED(ceiling);
-#endif
+        qInfo("bumpy torus, 26 views: inconsistent faces %lld -> %lld (%d views fewer, %d with "
+              "every move rejected, %d without inconsistent faces)",
+              in, out, improved, rejectedAll, consistent);
+        QVERIFY(improved > 0);
+        QVERIFY(rejectedAll > 0);
+        QVERIFY(consistent > 0);
+        QVERIFY(out < in);
     }
 
-    // Every view completes, also with corner charts (chart-vertex-rings),
-    // which change the meshes the phase gets. Each move is planned on a
-    // copy of the patch first (RingRetriangulation) and skipped when the
-    // mesh would refuse an edit or the edits end elsewhere than the judged
-    // triangulation: a refused flip used to make the phase throw (spot_control
-    // view 5 with corner charts, an earlier tree), and a patch with a corner
-    // inside it was applied as another triangulation than the one judged
-    // (bob_control view 7). The phase never raises a view's inconsistent
-    // faces and keeps every post-condition (enforced in Debug). Defaults
-    // (corner charts off) are neverWorseOverTheProtocol's runs.
-    void everyViewCompletes_data() {
-        QTest::addColumn<QString>("shapeName");
-        QTest::addColumn<bool>("cornerCharts");
-        QTest::addRow("spot, corner charts") << QString("spot") << true;
-        QTest::addRow("bob, corner charts") << QString("bob") << true;
-        QTest::addRow("bumpy-torus, corner charts") << QString("bumpy-torus") << true;
+    // The phase is the search on the mesh vertex removal left, with the
+    // settings its parameters give: what it publishes is what the search
+    // returns there.
+    void thePhasePublishesTheSearch() {
+        int moved = 0;
+        for (size_t v = 0; v < inputs().size(); ++v) {
+            const ViewInput& input = inputs()[v];
+            ConsistentMesh m = input.mesh;
+            const PatchSearchResult r = searchPatches(m, input.settings, input.phase);
+            const Snapshot& s = input.published;
+            const QString at = QString("view %1").arg(v);
+            const auto same = [&](const CounterName& key, long long value) {
+                return s.counter(key, -1.0) == static_cast<double>(value);
+            };
+            QVERIFY2(same(counters::kInconsistentFacesBefore, r.faces.before), qPrintable(at));
+            QVERIFY2(same(counters::kFacesTried, r.faces.tried), qPrintable(at));
+            QVERIFY2(same(counters::kFacesAccepted, r.faces.accepted), qPrintable(at));
+            QVERIFY2(same(counters::kSweeps, r.faces.sweeps), qPrintable(at));
+            QVERIFY2(same(counters::kPatchesSearched, r.moves.patches), qPrintable(at));
+            QVERIFY2(same(counters::kPatchSamples, r.moves.samples), qPrintable(at));
+            QVERIFY2(same(counters::kVerticesInserted, r.moves.inserted), qPrintable(at));
+            QVERIFY2(same(counters::kVerticesRelocated, r.moves.relocated), qPrintable(at));
+            QVERIFY2(same(counters::kNewRadialEdges, r.moves.newRadial), qPrintable(at));
+            QVERIFY2(same(counters::kFacesSkippedNothingChangedNearThem, r.moves.skipped),
+                     qPrintable(at));
+            QVERIFY2(same(counters::kInconsistentFaces,
+                          static_cast<long long>(inconsistentFaces(m).size())),
+                     qPrintable(at));
+            QCOMPARE(m.faceCount(), s.mesh->faceCount());
+            moved += r.faces.accepted > 0;
+        }
+        QVERIFY(moved > 0);
     }
 
-    void everyViewCompletes() {
-        QFETCH(QString, shapeName);
-        QFETCH(bool, cornerCharts);
-        const std::shared_ptr<const PolygonMesh> cage = loadShape(shapeName.toStdString());
-        const std::vector<Camera> cameras = views(*cage);
-        long long before = 0, after = 0, skipped = 0;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            MethodRun run;
+    // Each patch kind can be switched off: without insertion patches no
+    // vertex is inserted, without relocation patches none moves, without
+    // the late moves no C vertex slides and no radial edge appears; with
+    // neither kind the search tries the faces and changes nothing.
+    void patchKindsSwitchOff() {
+        long long inserted = 0, relocated = 0, tried = 0;
+        for (size_t v = 0; v < inputs().size(); ++v) {
+            const ViewInput& input = inputs()[v];
+            const QString at = QString("view %1").arg(v);
+            {
+                ConsistentMesh m = input.mesh;
+                PatchSearchSettings s = input.settings;
+                s.insert = false;
+                const PatchSearchResult r = searchPatches(m, s, input.phase);
+                const std::string broken = brokenRule(input.mesh, m, s, r);
+                QVERIFY2(broken.empty(), qPrintable(at + ": " + broken.c_str()));
+                QVERIFY2(r.moves.inserted == 0, qPrintable(at));
+                relocated += r.moves.relocated;
+            }
+            {
+                ConsistentMesh m = input.mesh;
+                PatchSearchSettings s = input.settings;
+                s.relocate = false;
+                s.contourSlide = false;
+                s.newRadialEnds = false;
+                const PatchSearchResult r = searchPatches(m, s, input.phase);
+                const std::string broken = brokenRule(input.mesh, m, s, r);
+                QVERIFY2(broken.empty(), qPrintable(at + ": " + broken.c_str()));
+                QVERIFY2(r.moves.relocated == 0 && r.moves.slid == 0 && r.moves.newRadial == 0,
+                         qPrintable(at));
+                inserted += r.moves.inserted;
+            }
+            {
+                ConsistentMesh m = input.mesh;
+                PatchSearchSettings s = input.settings;
+                s.insert = false;
+                s.relocate = false;
+                const PatchSearchResult r = searchPatches(m, s, input.phase);
+                QVERIFY2(r.moves.patches == 0 && r.faces.accepted == 0, qPrintable(at));
+                const std::string changed = meshDifference(input.mesh, m);
+                QVERIFY2(changed.empty(), qPrintable(at + ": " + changed.c_str()));
+                tried += r.faces.tried;
+            }
+        }
+        // The switches were not idle: each kind alone still moves vertices.
+        QVERIFY(inserted > 0);
+        QVERIFY(relocated > 0);
+        QVERIFY(tried > 0);
+    }
+
+    // A search stopped from checkCancelled (as a phase is cancelled) leaves
+    // the moves it applied, each whole: a valid mesh, no more inconsistent
+    // faces.
+    void aCancelledSearchLeavesAValidMesh() {
+        int cancelled = 0;
+        for (size_t v = 0; v < inputs().size(); ++v) {
+            const ViewInput& input = inputs()[v];
+            ConsistentMesh m = input.mesh;
+            const auto before = static_cast<long long>(inconsistentFaces(m).size());
+            if (before < 2)
+                continue;
+            int visits = 0;
+            bool thrown = false;
             try {
-                run = runView(cage, cameras[v], {{"chart-vertex-rings", cornerCharts}});
-            } catch (const std::exception& e) {
-                QFAIL(qPrintable(QString("view %1: %2").arg(v).arg(e.what())));
+                searchPatches(m, input.settings, input.phase, [&] {
+                    if (++visits == 2)
+                        throw PhaseCancelled();
+                });
+            } catch (const PhaseCancelled&) {
+                thrown = true;
             }
-            const QString violation = firstViolation(run);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = run.phase("patch-search");
-            const double in = s.counter(counters::kInconsistentFacesBefore, -1.0);
-            const double out = s.counter(counters::kInconsistentFaces, -1.0);
-            QVERIFY(in >= 0.0 && out >= 0.0);
-            QVERIFY2(out <= in, qPrintable(QString("view %1: %2 -> %3").arg(v).arg(in).arg(out)));
-            const double refused = s.counter(counters::kMovesSkippedTheMeshWouldRefuseAnEdit, -1.0);
-            QVERIFY(refused >= 0.0);
-            before += static_cast<long long>(in);
-            after += static_cast<long long>(out);
-            skipped += static_cast<long long>(refused);
+            QVERIFY(thrown);
+            const QString at = QString("view %1").arg(v);
+            const std::string e = connectivityErrors(m);
+            QVERIFY2(e.empty(), qPrintable(at + ": " + e.c_str()));
+            QVERIFY2(static_cast<long long>(inconsistentFaces(m).size()) <= before, qPrintable(at));
+            ++cancelled;
         }
-        qInfo("%s, corner charts %s, %d views: inconsistent faces %lld -> %lld in the patch "
-              "search, %lld moves skipped (the mesh would refuse an edit)",
-              qPrintable(shapeName), cornerCharts ? "on" : "off", static_cast<int>(cameras.size()),
-              before, after, skipped);
-    }
-
-    // With patch-radial-ends, the torus's last faces (F-F-F faces beyond a
-    // cusp's radial end, two corners radial ends) go: a radial end slides
-    // along its radial plane, its star re-triangulated, its radial edge kept
-    // (the post-condition |h_p(r)| <= radial-root-tolerance holds): no
-    // face stays inconsistent on any view.
-    void radialEndsClearTheTorus() {
-        const std::shared_ptr<const PolygonMesh> cage = loadShape("torus");
-        const std::vector<Camera> cameras = views(*cage);
-        long long relocated = 0, finalFaces = 0;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const MethodRun run = runView(cage, cameras[v], {{"patch-radial-ends", true}});
-            const QString violation = firstViolation(run);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = run.phase("patch-search");
-            QVERIFY(s.counter(counters::kInconsistentFaces) <=
-                    s.counter(counters::kInconsistentFacesBefore));
-            relocated += static_cast<long long>(s.counter(counters::kVerticesRelocated));
-            const double left = run.snapshots.back().counter(counters::kInconsistentFaces, -1.0);
-            QVERIFY2(left == 0.0, qPrintable(QString("view %1: %2 faces left").arg(v).arg(left)));
-            finalFaces += static_cast<long long>(left);
-        }
-        qInfo("torus with patch-radial-ends, %d views: %lld vertices relocated, %lld "
-              "inconsistent faces at the end",
-              static_cast<int>(cameras.size()), relocated, finalFaces);
-    }
-
-    // With patch-contour-slide, a C vertex without tagged edges slides along
-    // the contour (a root of g) with its star re-triangulated: the CC edges
-    // stay (same contour edges before and after the phase), every C vertex
-    // keeps |g| <= root-tolerance (a post-condition, enforced in Debug), no
-    // view ends with more inconsistent faces than without the slide, and
-    // some end with fewer. Spot alone keeps the suite's time.
-    void contourSlideRemovesFaces() {
-        const QString shapeName = "spot";
-        const std::shared_ptr<const PolygonMesh> cage = loadShape(shapeName.toStdString());
-        std::vector<Camera> cameras = views(*cage);
-#ifndef __OPTIMIZE__
-        // Debug: view 2 alone (2 -> 1 final faces), the suite's time.
-        cameras = {cameras[2]};
-#endif
-        const auto contourEdges = [](const Snapshot& s) {
-            const auto& label = *s.field(fields::kLabel)->labels();
-            long long n = 0;
-            for (Index e = 0; e < s.mesh->edgeCount(); ++e) {
-                const Index h = s.mesh->edgeHalfedge(e);
-                n += label[static_cast<size_t>(s.mesh->from(h))] == 0 &&
-                     label[static_cast<size_t>(s.mesh->to(h))] == 0;
-            }
-            return n;
-        };
-        long long slid = 0;
-        OnOffCounts tally;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            // The slide alone: the discs re-triangulated at cusps' radial ends
-            // after the normal wiggle (cusp-end-retriangulation-faces) fix the
-            // same faces either way.
-            const MethodRun off = runView(cage, cameras[v],
-                                          {{"patch-radial-ends", true},
-                                           {"patch-contour-slide", false},
-                                           {"cusp-end-retriangulation-faces", 0}});
-            const MethodRun on =
-                runView(cage, cameras[v],
-                        {{"patch-radial-ends", true}, {"cusp-end-retriangulation-faces", 0}});
-            const QString violation = firstViolation(on);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = on.phase("patch-search");
-            QCOMPARE(contourEdges(s), contourEdges(on.phase("vertex-removal")));
-            QCOMPARE(off.phase("patch-search").counter(counters::kCVerticesSlidAlongTheContour),
-                     0.0);
-            slid += static_cast<long long>(s.counter(counters::kCVerticesSlidAlongTheContour));
-            const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
-            QVERIFY2(worse.empty(), worse.c_str());
-        }
-        qInfo("%s, %d views: %lld C vertices slid; final inconsistent faces %.0f without the "
-              "slide, %.0f with it (%d views better)",
-              qPrintable(shapeName), static_cast<int>(cameras.size()), slid, tally.without,
-              tally.with, tally.better);
-        QVERIFY(slid > 0);
-        QVERIFY(tally.better > 0);
-    }
-
-    // With patch-new-radial-ends, a C vertex that radial edge insertion left
-    // with fewer than two radial edges gets one in the patch search: the
-    // free vertex sampled on its radial plane only, joined to it, the edge
-    // tagged radial (the radial post-conditions, |h_p(r)| within
-    // radial-root-tolerance, enforced in Debug). No view ends with more
-    // inconsistent faces than without it, some with fewer, and the radial
-    // edges grow by the counter (spot view 5 is one that gains).
-    void newRadialEndsRemoveFaces() {
-        const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
-        std::vector<Camera> cameras = views(*cage);
-#ifndef __OPTIMIZE__
-        // Debug: one view where it helps, the suite's time.
-        cameras = {Camera::views26(cage->boundingBox(), Viewport{800, 600})[5]};
-#endif
-        const auto radialEdges = [](const Snapshot& s) {
-            const auto& radial = *s.field(fields::kRadialEdge)->labels();
-            return std::count_if(radial.begin(), radial.end(), [](int r) { return r != 0; });
-        };
-        long long added = 0;
-        OnOffCounts tally;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const MethodRun off = runView(
-                cage, cameras[v], {{"patch-radial-ends", true}, {"patch-new-radial-ends", false}});
-            const MethodRun on = runView(cage, cameras[v], {{"patch-radial-ends", true}});
-            const QString violation = firstViolation(on);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            const Snapshot& s = on.phase("patch-search");
-            const double n = s.counter(counters::kNewRadialEdges, -1.0);
-            QVERIFY(n >= 0.0);
-            QCOMPARE(off.phase("patch-search").counter(counters::kNewRadialEdges), 0.0);
-            QCOMPARE(static_cast<double>(radialEdges(s)),
-                     static_cast<double>(radialEdges(on.phase("vertex-removal"))) + n);
-            added += static_cast<long long>(n);
-            const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
-            QVERIFY2(worse.empty(), worse.c_str());
-        }
-        qInfo("spot, %d views: %lld new radial edges; final inconsistent faces %.0f without "
-              "them, %.0f with them (%d views better)",
-              static_cast<int>(cameras.size()), added, tally.without, tally.with, tally.better);
-        QVERIFY(added > 0);
-        QVERIFY(tally.better > 0);
-    }
-
-    // With patch-new-radial-cusps, a cusp without radial edges (radial edge
-    // insertion found no outside region, Fig. 18e) may get one in the patch
-    // search, its valence-4 fan (Fig. 18d) re-triangulated around the new
-    // radial end. Bigguy views 4 and 11: fewer final inconsistent faces with it, radial
-    // edges at cusps added, no post-condition violated (Debug: the cusp
-    // valence and radial-edge checks enforced).
-    void newRadialCuspsRemoveFaces() {
-        const auto cage = sharedMesh("bigguy");
-        if (!cage)
-            QSKIP("../shared/meshes/bigguy.obj is absent");
-        const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
-#ifdef __OPTIMIZE__
-        const std::vector<Camera> cameras = {all[4], all[11]};
-#else
-        const std::vector<Camera> cameras = {all[4]};
-#endif
-        double added = 0.0;
-        OnOffCounts tally;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const MethodRun off = runView(
-                cage, cameras[v], {{"patch-radial-ends", true}, {"patch-new-radial-cusps", false}});
-            const MethodRun on = runView(cage, cameras[v], {{"patch-radial-ends", true}});
-            const QString violation = firstViolation(on);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            QCOMPARE(off.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps), 0.0);
-            added += on.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
-            const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
-            QVERIFY2(worse.empty(), worse.c_str());
-        }
-        qInfo("bigguy, %d views: %.0f new radial edges at cusps; final inconsistent faces %.0f "
-              "without them, %.0f with them (%d views better)",
-              static_cast<int>(cameras.size()), added, tally.without, tally.with, tally.better);
-        QVERIFY(added > 0.0);
-        QVERIFY(tally.better > 0);
-    }
-
-    // patch-new-radial-cusp-ties: a cusp without radial edges gets its first
-    // one even when the patch keeps as many inconsistent faces (a
-    // tie-break). Spot view 16 has two cusps whose valence-4 fan has a single
-    // F corner (the F side must cover 372 degrees around the cusp's image, two
-    // faces cannot): with the tie-break both get a radial edge and the later
-    // moves clear the view (final inconsistent faces 2 -> 0); no spot view is
-    // worse.
-    void newRadialCuspTiesClearSpotView16() {
-        const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
-        const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
-#ifdef __OPTIMIZE__
-        const std::vector<Camera> cameras = all;
-#else
-        const std::vector<Camera> cameras = {all[16]};
-#endif
-        OnOffCounts tally;
-        double ties = 0.0, view16 = -1.0;
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const MethodRun off =
-                runView(cage, cameras[v],
-                        {{"patch-radial-ends", true}, {"patch-new-radial-cusp-ties", false}});
-            const MethodRun on = runView(cage, cameras[v], {{"patch-radial-ends", true}});
-            const QString violation = firstViolation(on);
-            QVERIFY2(violation.isEmpty(), qPrintable(QString("view %1, %2").arg(v).arg(violation)));
-            ties += on.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0) -
-                    off.phase("patch-search").counter(counters::kNewRadialEdgesAtCusps, 0.0);
-            const std::string worse = tally.add(off.snapshots.back(), on.snapshots.back(), v);
-            QVERIFY2(worse.empty(), worse.c_str());
-            if (cameras.size() == 1 || v == 16)
-                view16 = on.snapshots.back().counter(counters::kInconsistentFaces, -1.0);
-        }
-        qInfo("spot, %d views: %.0f more radial edges at cusps; final inconsistent faces %.0f "
-              "without the tie-break, %.0f with it (%d views better; view 16: %.0f)",
-              static_cast<int>(cameras.size()), ties, tally.without, tally.with, tally.better,
-              view16);
-        QVERIFY(ties > 0.0);
-        QCOMPARE(view16, 0.0);
-    }
-
-    // Off, the phase passes the mesh through and says so.
-    void offPassesThrough() {
-        const std::shared_ptr<const PolygonMesh> cage = loadShape("spot");
-        const MethodRun run = runView(cage, views(*cage)[2], {{"patch-search", false}});
-        const Snapshot& s = run.phase("patch-search");
-        const Snapshot& previous = run.phase("vertex-removal");
-        QVERIFY(previous.counter(counters::kInconsistentFaces) > 0.0);
-        QCOMPARE(s.counter(counters::kInconsistentFaces),
-                 previous.counter(counters::kInconsistentFaces));
-        QCOMPARE(s.mesh->faceCount(), previous.mesh->faceCount());
-        QCOMPARE(s.mesh->vertexCount(), previous.mesh->vertexCount());
-        QCOMPARE(s.counter(counters::kVerticesInserted), 0.0);
-        bool noted = false;
-        for (const std::string& n : s.notes)
-            noted = noted || n.find("patch-search = false") != std::string::npos;
-        QVERIFY(noted);
+        QVERIFY(cancelled > 0);
     }
 };
 

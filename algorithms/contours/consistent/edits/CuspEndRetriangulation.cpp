@@ -76,16 +76,7 @@ public:
     // Outline of the faces, when they form a disc whose vertices all lie on
     // it.
     std::optional<Disc> disc(const std::vector<Index>& faces) const {
-        std::vector<std::pair<Index, Index>> half;
-        for (Index f : faces) {
-            const Triangle t = m_.face(f);
-            for (int i = 0; i < 3; ++i) {
-                const Index a = t[i], b = t[(i + 1) % 3];
-                if (!inside(faces, m_.faceOfHalfedge(b, a)))
-                    half.emplace_back(a, b);
-            }
-        }
-        Disc d{faces, simpleCycle(half)};
+        Disc d{faces, outline(m_, faces)};
         if (d.ring.size() != faces.size() + 2)
             return std::nullopt;
         return d;

@@ -1,6 +1,7 @@
 #include "contours/consistent/edits/LocalEdit.h"
 
 #include "contours/consistent/predicates/FaceClassification.h"
+#include "contours/consistent/predicates/RadialTriangles.h"
 #include "contours/consistent/predicates/TriangleQuality.h"
 
 #include <algorithm>
@@ -175,6 +176,10 @@ std::vector<Index> verticesOf(const ConsistentMesh& m, const std::vector<Index>&
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
+}
+
+bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
+    return w != kInvalidIndex && m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
 }
 
 } // namespace contour::consistent

@@ -76,4 +76,11 @@ std::vector<Index> inconsistentFaces(const ConsistentMesh& m);
 // The vertices of those faces, each once, in index order.
 std::vector<Index> verticesOf(const ConsistentMesh& m, const std::vector<Index>& faces);
 
+// A cusp keeps the valence 4 of Fig. 18d until radial edges are added
+// around it (contourInsertionChecks in phases/PhaseChecks.h): a §6.4 move
+// may not change its valence before; with `cuspEdits` off
+// (optimization-cusp-edits), any cusp keeps its valence. False for
+// kInvalidIndex.
+bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits);
+
 } // namespace contour::consistent

@@ -217,4 +217,18 @@ std::vector<Index> simpleCycle(const std::vector<std::pair<Index, Index>>& edges
     return ring;
 }
 
+std::vector<Index> outline(const ConsistentMesh& m, const std::vector<Index>& faces) {
+    std::vector<std::pair<Index, Index>> half;
+    for (Index f : faces) {
+        const Triangle t = m.face(f);
+        for (int i = 0; i < 3; ++i) {
+            const Index a = t[i], b = t[(i + 1) % 3];
+            const Index g = m.faceOfHalfedge(b, a);
+            if (g == kInvalidIndex || std::find(faces.begin(), faces.end(), g) == faces.end())
+                half.emplace_back(a, b);
+        }
+    }
+    return simpleCycle(half);
+}
+
 } // namespace contour::consistent

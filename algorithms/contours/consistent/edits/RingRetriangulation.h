@@ -87,4 +87,10 @@ private:
 // vertex on the boundary).
 std::vector<Index> simpleCycle(const std::vector<std::pair<Index, Index>>& edges);
 
+// The outline of a set of mesh faces, counter-clockwise: its boundary
+// half-edges (those whose opposite face is not in the set, in the order of
+// the faces and their corners) chained by simpleCycle(); empty when the
+// faces do not form a disc.
+std::vector<Index> outline(const ConsistentMesh& m, const std::vector<Index>& faces);
+
 } // namespace contour::consistent

@@ -3,14 +3,8 @@
 #include "contours/consistent/edits/LocalEdit.h"
 #include "contours/consistent/phases/PhaseChecks.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
-#include "contours/consistent/predicates/FaceClassification.h"
-#include "contours/consistent/predicates/RadialTriangles.h"
 
 namespace contour::consistent {
-
-bool lockedCusp(const ConsistentMesh& m, Index w, bool cuspEdits) {
-    return w != kInvalidIndex && m.vertex(w).cusp && (!cuspEdits || !onRadialEdge(m, w));
-}
 
 void publishTally(Snapshot& s, const OptimizationTally& t, const CounterName& tried,
                   const CounterName& accepted, const std::string& sweepParameter) {
@@ -53,26 +47,8 @@ std::vector<InvariantCheck> optimizationChecks(const PhaseContext& ctx, const Sn
 void sweepInconsistent(const PhaseContext& ctx, ConsistentMesh& m, int maxSweeps,
                        bool visitVertices, OptimizationTally& tally,
                        const std::function<bool(Index)>& tryMove) {
-    std::vector<Index> faces = inconsistentFaces(m);
-    tally.before = static_cast<long long>(faces.size());
-    while (tally.sweeps < maxSweeps && !faces.empty()) {
-        ++tally.sweeps;
-        long long accepted = 0;
-        for (Index x : visitVertices ? verticesOf(m, faces) : faces) {
-            ctx.checkCancelled();
-            // Face moves keep face indices valid within a sweep; an earlier
-            // move may have fixed or rewritten this face.
-            if (!visitVertices && faceIsConsistent(m, x))
-                continue;
-            ++tally.tried;
-            accepted += tryMove(x);
-        }
-        tally.accepted += accepted;
-        if (accepted == 0)
-            break;
-        faces = inconsistentFaces(m);
-        tally.sweepLimitHit = tally.sweeps == maxSweeps && !faces.empty();
-    }
+    sweepInconsistent(m, maxSweeps, visitVertices, tally, tryMove,
+                      [&ctx] { ctx.checkCancelled(); });
 }
 
 } // namespace contour::consistent
