@@ -1,7 +1,7 @@
 #include "DenseGroundTruth.h"
 
 #include "camera/Facing.h"
-#include "contours/consistent/mesh/ConsistentMesh.h"
+#include "contours/consistent/mesh/DomainCharts.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SurfaceFields.h"
 
@@ -521,13 +521,12 @@ std::vector<MethodLoop> methodLoopsFromPreimages(const Snapshot& snapshot,
         throw std::invalid_argument("methodLoopsFromPreimages: the snapshot has no preimages");
     const auto& face = *faceField->labels();
     const auto& uv = *uvField->vectors();
-    // Only the chart interpolation of the mesh is used (no camera-dependent
-    // part), so any camera will do. With the one-ring charts of regular
-    // corners (appendix B): a method run with chart-vertex-rings has contour
-    // edges between diagonal domain faces, which otherwise get no sample and
-    // their faces go missing; where an edge or face chart exists it is tried
-    // first, so runs without the option map the same.
-    consistent::ConsistentMesh charts(std::move(surface), Camera{}, 1e-9);
+    // With the one-ring charts of regular corners (appendix B): a method run
+    // with chart-vertex-rings has contour edges between diagonal domain
+    // faces, which otherwise get no sample and their faces go missing; where
+    // an edge or face chart exists it is tried first, so runs without the
+    // option map the same.
+    consistent::DomainCharts charts(std::move(surface), 1e-9);
     charts.setVertexRingCharts(true);
     const auto preimage = [&](Index v) {
         return Preimage{face[v], uv[v].x(), uv[v].y()};

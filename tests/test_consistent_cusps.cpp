@@ -383,7 +383,7 @@ private slots:
     }
 
     // Appendix B's chart of a regular domain vertex's one-ring
-    // (ConsistentMesh::setVertexRingCharts): two preimages in domain faces
+    // (DomainCharts::setVertexRingCharts): two preimages in domain faces
     // that share only a corner have no common chart by default, and one with
     // the option on; their midpoint then lies next to that corner.
     void vertexRingChartsJoinDiagonalFaces() {
@@ -419,10 +419,10 @@ private slots:
             const Vec2 x = corner + 0.1 * (Vec2(0.5, 0.5) - corner);
             p[k] = {faces[k], x.x(), x.y()};
         }
-        ConsistentMesh m(surface, Camera{}, 1e-9);
-        QVERIFY(!m.interpolate(p[0], p[1], 0.5));
-        m.setVertexRingCharts(true);
-        const std::optional<Preimage> mid = m.interpolate(p[0], p[1], 0.5);
+        DomainCharts charts(surface, 1e-9);
+        QVERIFY(!charts.interpolate(p[0], p[1], 0.5));
+        charts.setVertexRingCharts(true);
+        const std::optional<Preimage> mid = charts.interpolate(p[0], p[1], 0.5);
         QVERIFY(mid.has_value());
         const Vec3 corner =
             surface

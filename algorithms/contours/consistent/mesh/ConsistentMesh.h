@@ -1,21 +1,17 @@
 #pragma once
-// The per-view, editable triangle mesh of Bénard, Hertzmann & Kass 2014 §6
-// (Bénard 2014 §4, §6): every vertex i stores a preimage u_i on the smooth
-// surface's domain, its position f(u_i), its limit normal n(u_i), g(u_i) =
-// (c - f) · n (eq. 1), the radial curvature and a label F / B / C. Local
-// operators only (§6: edge split, vertex shift); provenance per vertex
-// (initial / inserted / shifted, and the phase that last changed it) and per
-// face (the phase that created or last changed it).
-//
-// Preimage interpolation follows appendix B: a point on a domain
-// edge or corner has one preimage per domain face around it; two preimages
-// are interpolated in a face that holds both, or, when they lie in
-// edge-adjacent faces, in one face's chart extended across the shared edge
-// (SmoothSurface::transferAcrossEdge), the result mapped back into a face that
-// contains it. When no such chart exists the interpolation fails (nullopt) and
-// the caller cancels the operation and counts it; nothing is guessed.
+// The per-view, editable triangle mesh of Bénard, Hertzmann & Kass 2014 §6:
+// its topology (vertices, faces, half-edges, edge tags), the local operators
+// (§6: edge split, face split, flip, vertex shift, valence-3 removal) and
+// provenance per face (the phase that created or last changed it). Each
+// vertex is a MeshVertex (MeshVertex.h) computed by its VertexEvaluator;
+// preimages are interpolated in the appendix-B charts of its DomainCharts.
+// The mesh keeps what depends on its faces: the loops over every face
+// (parameterOrientations(), centroidDomainFaces()) and their caches.
 #include "camera/Camera.h"
+#include "contours/consistent/mesh/DomainCharts.h"
 #include "contours/consistent/mesh/HalfedgeMap.h"
+#include "contours/consistent/mesh/MeshVertex.h"
+#include "contours/consistent/mesh/VertexEvaluator.h"
 #include "mesh/TriangleMesh.h"
 #include "surface/SmoothSurface.h"
 
@@ -30,18 +26,12 @@
 
 namespace contour::consistent {
 
-// R_S at a vertex (Bénard 2014 §4): sign of g, or C for an inserted root.
-enum class VertexLabel : std::int8_t { Back = -1, Contour = 0, Front = 1 };
-enum class Provenance : std::int8_t { Initial = 0, Inserted = 1, Shifted = 2, Wiggled = 3 };
-
 // Tags kept on an edge (an unordered vertex pair) between phases.
 enum EdgeTag : int {
     kNoTag = 0,
     kCuspEdge = 1,   // an FB edge whose root of g is a cusp (§6.2 d): insert it last
     kRadialEdge = 2, // p-r with p a C vertex and r on p's radial plane (Definition 5)
 };
-
-VertexLabel labelFromG(double g);
 
 // The triangle's corners rotated so that v comes first (same orientation).
 inline Triangle rotatedTo(Triangle t, Index v) {
@@ -50,33 +40,20 @@ inline Triangle rotatedTo(Triangle t, Index v) {
     return t;
 }
 
-struct MeshVertex {
-    Preimage preimage;
-    Vec3 position = Vec3::Zero(); // f(u)
-    Vec3 normal = Vec3::Zero();   // n(u), unit
-    double g = 0.0;               // (c - f(u)) · n(u)
-    double radialCurvature = 0.0; // SurfaceFields.h convention, NaN where undefined
-    // Only the final normal wiggle (§6.4) moves a vertex off the
-    // surface: position = f(u) + normalOffset * n(u).
-    double normalOffset = 0.0;
-    bool cusp = false; // a C vertex inserted at a cusp (g = 0 and κr = 0, §6.2 d)
-    VertexLabel label = VertexLabel::Contour;
-    Provenance provenance = Provenance::Initial;
-    int phase = 0; // the phase index that created or last changed the vertex
-};
-
 class ConsistentMesh {
 public:
-    // chartTolerance: how far (in domain parameters) a preimage may be from a
-    // domain edge and still count as lying on it (so that it also has a
-    // preimage in the neighbouring face), and how far outside a face an
-    // interpolated preimage may land and still count as inside.
+    // chartTolerance: as in DomainCharts' constructor.
     ConsistentMesh(std::shared_ptr<const SmoothSurface> surface, const Camera& camera,
                    double chartTolerance);
 
-    const SmoothSurface& surface() const { return *surface_; }
-    const std::shared_ptr<const SmoothSurface>& surfacePtr() const { return surface_; }
-    const Camera& camera() const { return camera_; }
+    // The appendix-B charts the mesh interpolates its preimages in, and the
+    // evaluation of its vertex records at this view's camera.
+    const DomainCharts& charts() const { return charts_; }
+    const VertexEvaluator& evaluator() const { return evaluator_; }
+
+    const SmoothSurface& surface() const { return charts_.surface(); }
+    const std::shared_ptr<const SmoothSurface>& surfacePtr() const { return charts_.surfacePtr(); }
+    const Camera& camera() const { return evaluator_.camera(); }
 
     Index vertexCount() const { return static_cast<Index>(vertices_.size()); }
     Index faceCount() const { return static_cast<Index>(faces_.size()); }
@@ -86,15 +63,14 @@ public:
     int facePhase(Index f) const { return facePhase_[f]; }
     const std::vector<Index>& vertexFaces(Index v) const { return vertexFaces_[v]; }
 
-    // Evaluates f, n, g and the radial curvature at p; the label is sign(g).
-    MeshVertex evaluate(const Preimage& p) const;
-    // evaluate(p) given sp = surface().evaluate(p), already computed (the
-    // initialization's tessellation evaluated every vertex).
-    MeshVertex evaluated(const Preimage& p, const SurfacePoint& sp) const;
-    // The same without the radial curvature (NaN): what the label and the
-    // facing of a candidate need. Every other field has evaluate()'s exact
-    // value, so evaluate() of a chosen candidate gives the same record.
-    MeshVertex evaluateWithoutCurvature(const Preimage& p) const;
+    // The evaluator's (VertexEvaluator.h).
+    MeshVertex evaluate(const Preimage& p) const { return evaluator_.evaluate(p); }
+    MeshVertex evaluated(const Preimage& p, const SurfacePoint& sp) const {
+        return evaluator_.evaluated(p, sp);
+    }
+    MeshVertex evaluateWithoutCurvature(const Preimage& p) const {
+        return evaluator_.evaluateWithoutCurvature(p);
+    }
 
     // Building (initialization and reloading a snapshot).
     Index addVertex(const MeshVertex& v);
@@ -124,40 +100,32 @@ public:
     // interior edge the one with a < b).
     std::vector<std::array<Index, 2>> edges() const;
 
-    // Appendix B also names the chart of a regular domain vertex's one-ring
-    // (four quads, one per quadrant): with this on, two preimages in faces
-    // that share only such a corner have a common chart too (the second
-    // face's coordinates carried across two edges, both ways round the
-    // corner agreeing). Off: a face and its edge neighbours only.
-    void setVertexRingCharts(bool on) { vertexRingCharts_ = on; }
-    // Appendix B: u(t) = (1 - t) u_a + t u_b in a common chart.
-    std::optional<Preimage> interpolate(const Preimage& a, const Preimage& b, double t) const;
-    // The same for several t (out[i] at t[i]): the charts of a and b are
-    // found once.
+    // The charts' (DomainCharts.h): appendix-B interpolation of preimages.
+    void setVertexRingCharts(bool on) { charts_.setVertexRingCharts(on); }
+    std::optional<Preimage> interpolate(const Preimage& a, const Preimage& b, double t) const {
+        return charts_.interpolate(a, b, t);
+    }
     void interpolate(const Preimage& a, const Preimage& b, std::span<const double> t,
-                     std::span<std::optional<Preimage>> out) const;
-    // interpolate(a, b, t) for t chosen one at a time (a bisection): a's and
-    // b's preimages around them (appendix B) are found once, so at(t) is
-    // interpolate(a, b, t) without that search (the same results).
-    class Segment;
-    Segment segment(const Preimage& a, const Preimage& b) const;
+                     std::span<std::optional<Preimage>> out) const {
+        charts_.interpolate(a, b, t, out);
+    }
+    using Segment = DomainCharts::Segment;
+    Segment segment(const Preimage& a, const Preimage& b) const { return charts_.segment(a, b); }
     // Per face, the domain face holding its centroid: u(1/3) from the
     // midpoint of corners 0-1 to corner 2 (interpolate() twice),
     // kInvalidIndex without a common chart. Every face at once.
     std::vector<Index> centroidDomainFaces() const;
-    // The three preimages' coordinates in every common chart: the domain
-    // faces holding all three, or else the faces whose chart extended across
-    // their edges holds all three; empty when there is none.
-    std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const;
-    // Whether p[0] shares a face or edge-adjacent faces with p[1] and with
-    // p[2], and the three lie in one face's chart extended across its edges:
-    // the charts without setVertexRingCharts. A move that must not straddle
-    // a regular corner asks this (contour insertion's snap rule).
-    bool withinEdgeCharts(const std::array<Preimage, 3>& p) const;
-    // Sign of the face's orientation in parameter space (+1 counter-clockwise,
-    // the domain's orientation; -1 a fold; 0 degenerate), the worst over all
-    // common charts, or nullopt when the corners have no common chart.
-    std::optional<int> parameterOrientation(const std::array<Preimage, 3>& p) const;
+    // The charts' (DomainCharts.h).
+    std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const {
+        return charts_.chartCoordinates(p);
+    }
+    bool withinEdgeCharts(const std::array<Preimage, 3>& p) const {
+        return charts_.withinEdgeCharts(p);
+    }
+    std::optional<int> parameterOrientation(const std::array<Preimage, 3>& p) const {
+        return charts_.parameterOrientation(p);
+    }
+    // The charts' parameterOrientation() of face f's corners.
     std::optional<int> parameterOrientation(Index f) const;
     // parameterOrientation(f) for every face, each vertex's preimages found
     // once (faster than face by face; same results).
@@ -252,10 +220,8 @@ public:
     void adoptFaceCaches(const FaceCaches& caches);
 
 private:
-    std::shared_ptr<const SmoothSurface> surface_;
-    Camera camera_;
-    double tolerance_;
-    bool vertexRingCharts_ = false;
+    DomainCharts charts_;
+    VertexEvaluator evaluator_;
     std::vector<MeshVertex> vertices_;
     std::vector<Triangle> faces_;
     std::vector<int> facePhase_;
@@ -296,74 +262,6 @@ public:
 private:
     void attachFace(Index f);
     void detachFace(Index f);
-    int cornerCount(Index domainFace) const { return surface_->isQuad(domainFace) ? 4 : 3; }
-    bool onDomainEdge(const Preimage& p, int edge) const;
-    bool onAnyDomainEdge(const Preimage& p) const;
-    bool insideWithTolerance(const Preimage& p) const;
-    Preimage clampIntoFace(Preimage p) const;
-    // A few preimages without a heap allocation in the common case (a domain
-    // corner of valence <= kInline); the hot loops call equivalents() for
-    // every interpolation and every face orientation.
-    class Preimages {
-    public:
-        static constexpr int kInline = 12;
-        void push_back(const Preimage& p);
-        size_t size() const { return static_cast<size_t>(size_); }
-        const Preimage& operator[](size_t i) const { return data()[i]; }
-        const Preimage* begin() const { return data(); }
-        const Preimage* end() const { return data() + size_; }
-
-    private:
-        const Preimage* data() const { return heap_.empty() ? inline_.data() : heap_.data(); }
-        std::array<Preimage, kInline> inline_;
-        std::vector<Preimage> heap_;
-        int size_ = 0;
-    };
-    // Every preimage of the same surface point (one per domain face around a
-    // domain edge or corner the point lies on), p first.
-    Preimages equivalents(const Preimage& p) const;
-    using PreimageSpan = std::span<const Preimage>;
-    static PreimageSpan span(const Preimages& p) { return {p.begin(), p.size()}; }
-    // interpolate() given both preimages' equivalents().
-    std::optional<Preimage> interpolateIn(PreimageSpan ra, PreimageSpan rb, double t) const;
-    // p expressed in the chart of `face` (p's face, or an edge neighbour).
-    std::optional<Vec2> inChart(PreimageSpan reps, Index face) const;
-    // The same without the regular-corner charts.
-    std::optional<Vec2> inEdgeChart(PreimageSpan reps, Index face) const;
-    // r in the chart of `face` when the two faces share only a regular
-    // corner (setVertexRingCharts), else nullopt.
-    std::optional<Preimage> acrossRegularCorner(const Preimage& r, Index face) const;
-    // Calls visit(coordinates) for every common chart of the three
-    // preimages, in the order chartCoordinates() lists them; reps are their
-    // equivalents().
-    template <typename Visit>
-    void forEachChart(const std::array<PreimageSpan, 3>& reps, Visit visit) const;
-    template <typename Visit>
-    void forEachChart(const std::array<Preimage, 3>& p, Visit visit) const;
 };
-
-class ConsistentMesh::Segment {
-public:
-    std::optional<Preimage> at(double t) const {
-        return a_.face == b_.face ? m_->interpolate(a_, b_, t)
-                                  : m_->interpolateIn(span(ra_), span(rb_), t);
-    }
-
-private:
-    friend class ConsistentMesh;
-    Segment(const ConsistentMesh& m, const Preimage& a, const Preimage& b) : m_(&m), a_(a), b_(b) {
-        if (a.face != b.face) {
-            ra_ = m.equivalents(a);
-            rb_ = m.equivalents(b);
-        }
-    }
-    const ConsistentMesh* m_;
-    Preimage a_, b_;
-    Preimages ra_, rb_;
-};
-
-inline ConsistentMesh::Segment ConsistentMesh::segment(const Preimage& a, const Preimage& b) const {
-    return {*this, a, b};
-}
 
 } // namespace contour::consistent
