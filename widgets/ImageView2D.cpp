@@ -330,6 +330,7 @@ void ImageView2D::rebuildViewGraph() {
         nodes_.push_back(n);
         ++drawn_.nodes;
         ++drawn_.nodesByType[static_cast<size_t>(graph_->nodes[n].type)];
+        drawn_.cuspFolds += graph_->nodes[n].smoothCusp;
     }
 }
 
@@ -402,10 +403,16 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
         if (drawn_.nodesByType[static_cast<size_t>(t)] == 0)
             continue;
         const NodeStyle style = nodeStyle(static_cast<ViewNodeType>(t));
-        entries.push_back({LegendEntry::Glyph, style.color.toQColor(), style.glyph,
-                           QStringLiteral("%1 (%2)")
-                               .arg(tr(style.label))
-                               .arg(drawn_.nodesByType[static_cast<size_t>(t)])});
+        const int count = drawn_.nodesByType[static_cast<size_t>(t)];
+        QString label = QStringLiteral("%1 (%2)").arg(tr(style.label)).arg(count);
+        // Consistent contours: the smooth surface's cusps and the folds of
+        // the near-face fallback next to inconsistent faces, counted apart.
+        if (static_cast<ViewNodeType>(t) == ViewNodeType::CurtainFold && drawn_.cuspFolds > 0)
+            label = QStringLiteral("%1 (%2 at cusps, %3 by a mesh test)")
+                        .arg(tr(style.label))
+                        .arg(drawn_.cuspFolds)
+                        .arg(count - drawn_.cuspFolds);
+        entries.push_back({LegendEntry::Glyph, style.color.toQColor(), style.glyph, label});
     }
     appendComparisonLegend(entries);
     return entries;

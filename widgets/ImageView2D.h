@@ -126,6 +126,7 @@ private:
     struct Counts {
         int visible = 0, hidden = 0, simplified = 0, nodes = 0;
         std::array<int, kViewNodeTypeCount> nodesByType{};
+        int cuspFolds = 0; // curtain folds at the smooth surface's cusps (ViewNode::smoothCusp)
     };
     struct LegendEntry {
         enum Kind { Line, DashedLine, WideLine, Glyph } kind;
