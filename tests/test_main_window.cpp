@@ -2,6 +2,7 @@
 // forth, switches methods, orbits the 3D view and sets the analysis camera
 // from it, and checks what the views draw in grabbed images. Needs a display:
 // run under `xvfb-run -a -s "-screen 0 1600x1200x24"` (Mesa llvmpipe).
+#include "ContourTestSupport.h"
 #include "ImageView2D.h"
 #include "MainWindow.h"
 #include "MethodPanel.h"
@@ -721,10 +722,7 @@ void TestMainWindow::dropOpensFile() {
 // Keep file orientation reloads it as the file has it, contours hidden.
 void TestMainWindow::inwardMeshIsFlippedOnOpen() {
     const PolygonMesh sphere = makeSphere(1.0, 24);
-    PolygonMesh inward = sphere;
-    for (Index f = 0; f < sphere.faceCount(); ++f)
-        std::reverse(inward.indices.begin() + sphere.offsets[f] + 1,
-                     inward.indices.begin() + sphere.offsets[f + 1]);
+    const PolygonMesh inward = testing::reversedFaces(sphere);
     const QString path = tmp_.filePath(QStringLiteral("inward_sphere.obj"));
     writeObj(inward, path.toStdString());
     const auto visibleChains = [this] {
@@ -757,6 +755,7 @@ void TestMainWindow::inwardMeshIsFlippedOnOpen() {
     QVERIFY(input.cage->indices == sphere.indices);
     QCOMPARE(input.notes.size(), size_t(1));
     QCOMPARE(QString::fromStdString(input.notes.front()), flipped);
+    QCOMPARE(window_->phaseStepper()->displayedNotes(-1), QStringList{flipped});
     QVERIFY(visibleChains() > 0);
 
     window_->keepOrientationAction()->trigger();

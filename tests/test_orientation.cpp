@@ -2,6 +2,7 @@
 // (mesh/Orientation.h): closed, consistently oriented components are decided
 // by their signed volume and flipped when it is negative; open and
 // inconsistently oriented ones are reported and left alone.
+#include "ContourTestSupport.h"
 #include "mesh/Orientation.h"
 #include "mesh/ProceduralShapes.h"
 
@@ -10,36 +11,13 @@
 #include <numbers>
 
 using namespace contour;
+using testing::reversedFaces;
 
 namespace {
 
 // The unit cube [0, 1]^3 as six quads, counter-clockwise seen from outside.
 PolygonMesh makeCube() {
-    PolygonMesh cube;
-    for (int i = 0; i < 8; ++i)
-        cube.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    cube.addFace({0, 2, 3, 1});
-    cube.addFace({4, 5, 7, 6});
-    cube.addFace({0, 1, 5, 4});
-    cube.addFace({1, 3, 7, 5});
-    cube.addFace({3, 2, 6, 7});
-    cube.addFace({2, 0, 4, 6});
-    return cube;
-}
-
-// Each listed face (all when `faces` is empty) written the other way round,
-// by the test's own hand: the first corner stays, the others run backwards.
-PolygonMesh reversed(const PolygonMesh& mesh, std::vector<Index> faces = {}) {
-    if (faces.empty())
-        for (Index f = 0; f < mesh.faceCount(); ++f)
-            faces.push_back(f);
-    PolygonMesh out = mesh;
-    for (const Index f : faces) {
-        const auto face = mesh.face(f);
-        for (size_t i = 1; i < face.size(); ++i)
-            out.indices[static_cast<size_t>(mesh.offsets[f]) + i] = face[face.size() - i];
-    }
-    return out;
+    return readMesh(CONTOUR_SOURCE_DIR "/tests/data/good/cube_quads.obj");
 }
 
 PolygonMesh withoutFace(const PolygonMesh& mesh, Index removed) {
@@ -135,7 +113,7 @@ void TestOrientation::reversedMeshesAreFlippedBack_data() {
 void TestOrientation::reversedMeshesAreFlippedBack() {
     QFETCH(int, shape);
     const PolygonMesh original = shapeFor(shape);
-    const PolygonMesh inward = reversed(original);
+    const PolygonMesh inward = reversedFaces(original);
     const double outwardVolume = orientationReport(original).components.at(0).signedVolume;
 
     OrientationReport report;
@@ -177,7 +155,7 @@ void TestOrientation::onlyTheInwardComponentIsFlipped() {
             second.push_back(f);
     QCOMPARE(Index(second.size()), before.components[1].faces);
     QCOMPARE(second.front(), before.components[1].firstFace);
-    const PolygonMesh mixed = reversed(spheres, second);
+    const PolygonMesh mixed = reversedFaces(spheres, second);
 
     OrientationReport report;
     const PolygonMesh oriented = orientOutward(mixed, &report);
@@ -192,7 +170,8 @@ void TestOrientation::onlyTheInwardComponentIsFlipped() {
 
 void TestOrientation::openMeshIsReportedAndUntouched() {
     for (const PolygonMesh& open :
-         {withoutFace(makeCube(), 1), reversed(withoutFace(makeCube(), 1)), makeSaddlePatch(8)}) {
+         {withoutFace(makeCube(), 1), reversedFaces(withoutFace(makeCube(), 1)),
+          makeSaddlePatch(8)}) {
         OrientationReport report;
         const PolygonMesh oriented = orientOutward(open, &report);
         QCOMPARE(report.components.size(), size_t(1));
@@ -211,7 +190,7 @@ void TestOrientation::openMeshIsReportedAndUntouched() {
 }
 
 void TestOrientation::inconsistentMeshIsReportedAndUntouched() {
-    const PolygonMesh cube = reversed(makeCube(), {2});
+    const PolygonMesh cube = reversedFaces(makeCube(), {2});
     OrientationReport report;
     const PolygonMesh oriented = orientOutward(cube, &report);
     QCOMPARE(report.components.size(), size_t(1));
@@ -229,7 +208,7 @@ void TestOrientation::inconsistentMeshIsReportedAndUntouched() {
              message.c_str());
 
     // Next to a flipped component the message says both.
-    PolygonMesh both = reversed(makeCube());
+    PolygonMesh both = reversedFaces(makeCube());
     const Index offset = both.vertexCount();
     for (const Vec3& p : cube.positions)
         both.positions.push_back(p + Vec3(3, 0, 0));
@@ -253,7 +232,7 @@ void TestOrientation::inconsistentMeshIsReportedAndUntouched() {
 }
 
 void TestOrientation::volumeFarFromTheOrigin() {
-    PolygonMesh cube = reversed(makeCube());
+    PolygonMesh cube = reversedFaces(makeCube());
     for (Vec3& p : cube.positions)
         p += Vec3(1e7, -3e6, 5e6);
     const OrientationReport report = orientationReport(cube);
@@ -262,7 +241,7 @@ void TestOrientation::volumeFarFromTheOrigin() {
 }
 
 void TestOrientation::keepingTheFileOrientation() {
-    const PolygonMesh inward = reversed(makeSphere(1.0, 12));
+    const PolygonMesh inward = reversedFaces(makeSphere(1.0, 12));
     OrientationReport report;
     const PolygonMesh kept = orientForContours(inward, true, report);
     QVERIFY(sameMesh(kept, inward));

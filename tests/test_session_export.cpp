@@ -13,6 +13,7 @@
 // behind (a file kept aside is put back). Needs a display: run under
 // `xvfb-run -a` (Mesa llvmpipe).
 #include "AboutDialog.h"
+#include "ContourTestSupport.h"
 #include "ImageView2D.h"
 #include "MainWindow.h"
 #include "MethodComparison.h"
@@ -449,10 +450,7 @@ void TestSessionExport::sessionRestoresThePreset() {
 // diagnostic snapshot's report notes the flip.
 void TestSessionExport::sessionKeepsTheMeshOrientation() {
     const PolygonMesh outward = makeSphere(1.0, 12);
-    PolygonMesh inward = outward;
-    for (Index f = 0; f < outward.faceCount(); ++f)
-        std::reverse(inward.indices.begin() + outward.offsets[f] + 1,
-                     inward.indices.begin() + outward.offsets[f + 1]);
+    const PolygonMesh inward = testing::reversedFaces(outward);
     const QString meshPath = dir_.filePath(QStringLiteral("inward.obj"));
     writeObj(inward, meshPath.toStdString());
 

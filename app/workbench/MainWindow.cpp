@@ -680,10 +680,10 @@ bool MainWindow::installMesh(const LoadedMesh& loaded, const QString& name) {
     lastError_.clear();
     statusBar()->clearMessage();
     rebuildRunner(-1);
-    // Until the next message: a flipped (or kept inward) mesh changes what
-    // every method shows.
+    // A flipped (or kept inward) mesh changes what every method shows: said
+    // until the next message. Undecidable orientations only for a while.
     if (!orientation.isEmpty())
-        statusBar()->showMessage(orientation);
+        statusBar()->showMessage(orientation, loaded.inwardComponents > 0 ? 0 : 8000);
     return true;
 }
 

@@ -195,12 +195,12 @@ bool SessionController::open(const QString& path) {
         window_->reportError(title, QString::fromStdString(e.what()));
         return false;
     }
-    // The session's mesh is oriented as it was saved; the menu shows it.
-    window_->keepOrientationAction()->setChecked(session.keepFileOrientation);
     if (!window_->restoreRun(mesh, QString::fromStdString(session.meshPath),
                              QString::fromStdString(session.method), parameters, session.camera,
                              phases))
         return false;
+    // The session's mesh is oriented as it was saved; the menu shows it.
+    window_->keepOrientationAction()->setChecked(session.keepFileOrientation);
     window_->methodPanel()->setStartingPreset(QString::fromStdString(preset));
     applyDisplay(session);
     if (session.viewCamera)
