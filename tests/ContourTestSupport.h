@@ -190,6 +190,22 @@ inline bool writeObjFile(const PolygonMesh& mesh, const std::string& path) {
     return out.good();
 }
 
+// `mesh` with the listed faces (every face when `faces` is empty) written the
+// other way round, as a file with inward normals has them: the first corner
+// stays and the others run backwards.
+inline PolygonMesh reversedFaces(const PolygonMesh& mesh, std::vector<Index> faces = {}) {
+    if (faces.empty())
+        for (Index f = 0; f < mesh.faceCount(); ++f)
+            faces.push_back(f);
+    PolygonMesh out = mesh;
+    for (const Index f : faces) {
+        const auto face = mesh.face(f);
+        for (size_t i = 1; i < face.size(); ++i)
+            out.indices[static_cast<size_t>(mesh.offsets[f]) + i] = face[face.size() - i];
+    }
+    return out;
+}
+
 inline int contourLoops(const Snapshot& s, int* open = nullptr) {
     int loops = 0, opened = 0;
     for (const Polyline& line : *s.curves)

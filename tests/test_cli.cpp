@@ -917,6 +917,71 @@ private slots:
                  qPrintable(r.err));
     }
 
+    // A sphere whose faces are all oriented inward: by default it is flipped
+    // (one line says so, the report's mesh notes it) and its contour is
+    // visible; --keep-orientation keeps it as in the file, which hides every
+    // contour (the front faces point away from the eye). A session records
+    // the choice and a run of it keeps the file's orientation again.
+    void inwardMeshIsFlipped() {
+        const QString out = freshOutputDir("inward");
+        const QString mesh = out + "/inward.obj";
+        QVERIFY(testing::writeObjFile(testing::reversedFaces(sphereMesh_), mesh.toStdString()));
+        const QString prefix = mesh + ": 1 of 1 closed components ";
+
+        RunResult r = run({"--mesh", mesh, "--method", "mesh", "--json", out + "/flipped.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QString flippedLine = prefix + "had inward normals (signed volume -";
+        QVERIFY2(r.out.startsWith(flippedLine), qPrintable(r.out));
+        const QString firstLine = r.out.section('\n', 0, 0);
+        QVERIFY2(firstLine.endsWith("); flipped (--keep-orientation keeps them)"),
+                 qPrintable(firstLine));
+        const nlohmann::json flipped = readJson(out + "/flipped.json");
+        QCOMPARE(flipped["mesh"]["notes"], nlohmann::json::array({firstLine.toStdString()}));
+        const nlohmann::json& graph = flipped["views"][0]["view_graph"]["totals"];
+        QVERIFY(graph["visible_chains"].get<int>() > 0);
+        QVERIFY(graph["visible_length_px"].get<double>() > 0.0);
+
+        // The same run as on the sphere written outward, but for the note.
+        r = run({"--mesh", sphere_, "--method", "mesh", "--json", out + "/outward.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(!r.out.contains("inward normals"), qPrintable(r.out));
+        const nlohmann::json outward = readJson(out + "/outward.json");
+        QVERIFY(outward["mesh"]["notes"].empty());
+        QCOMPARE(flipped["views"][0]["view_graph"]["chains"],
+                 outward["views"][0]["view_graph"]["chains"]);
+
+        r = run({"--mesh", mesh, "--method", "mesh", "--keep-orientation", "--json",
+                 out + "/kept.json", "--snapshot-dir", out + "/snap"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const QString keptLine = r.out.section('\n', 0, 0);
+        QVERIFY2(keptLine.startsWith(prefix + "has inward normals (signed volume -") &&
+                     keptLine.endsWith("; kept as in the file (--keep-orientation): its "
+                                       "contours will read as hidden"),
+                 qPrintable(r.out));
+        const nlohmann::json kept = readJson(out + "/kept.json");
+        QCOMPARE(kept["mesh"]["notes"], nlohmann::json::array({keptLine.toStdString()}));
+        const nlohmann::json& hidden = kept["views"][0]["view_graph"]["totals"];
+        QVERIFY(hidden["chains"].get<int>() > 0);
+        QCOMPARE(hidden["visible_chains"].get<int>(), 0);
+        QCOMPARE(hidden["visible_length_px"].get<double>(), 0.0);
+
+        const QString session = out + "/snap/session.cwsession";
+        QCOMPARE(readJson(session)["keep_file_orientation"].get<bool>(), true);
+        r = run({"--session", session, "--json", out + "/again.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(r.out.contains("kept as in the file"), qPrintable(r.out));
+        QCOMPARE(readJson(out + "/again.json")["views"][0]["view_graph"]["totals"]["visible_chains"]
+                     .get<int>(),
+                 0);
+
+        // The open saddle's orientation cannot be decided: said, and untouched.
+        r = run({"--mesh", saddle_, "--method", "mesh", "--phase", "0"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(r.out.startsWith(saddle_ + ": 1 open component left as in the file: its "
+                                            "orientation cannot be decided by volume\n"),
+                 qPrintable(r.out));
+    }
+
     // The preset a run started from and the parameters changed from it go
     // into the snapshot's session and report; a run of that session starts
     // from the same preset; a session naming a preset the method lacks runs

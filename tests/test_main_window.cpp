@@ -2,6 +2,7 @@
 // forth, switches methods, orbits the 3D view and sets the analysis camera
 // from it, and checks what the views draw in grabbed images. Needs a display:
 // run under `xvfb-run -a -s "-screen 0 1600x1200x24"` (Mesa llvmpipe).
+#include "ContourTestSupport.h"
 #include "ImageView2D.h"
 #include "MainWindow.h"
 #include "MethodPanel.h"
@@ -24,6 +25,7 @@
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QToolBar>
 #include <QUrl>
@@ -138,6 +140,7 @@ private slots:
     void imageViewShowsCurves();
     void badFileShowsErrorWithoutCrash();
     void dropOpensFile();
+    void inwardMeshIsFlippedOnOpen();
     void grabMainWindow();
     void controlCageWireframe();
     void lighterDrawingWhileOrbiting();
@@ -712,6 +715,67 @@ void TestMainWindow::dropOpensFile() {
     QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
     QVERIFY(window_->runner()->atEnd());
     QVERIFY(!window_->currentSnapshot().curves->empty());
+}
+
+// A sphere whose faces are all oriented inward: opening it flips it (the
+// status bar and the input's note say so) and its contour is visible; File ›
+// Keep file orientation reloads it as the file has it, contours hidden.
+void TestMainWindow::inwardMeshIsFlippedOnOpen() {
+    const PolygonMesh sphere = makeSphere(1.0, 24);
+    const PolygonMesh inward = testing::reversedFaces(sphere);
+    const QString path = tmp_.filePath(QStringLiteral("inward_sphere.obj"));
+    writeObj(inward, path.toStdString());
+    const auto visibleChains = [this] {
+        const Snapshot last = window_->currentSnapshot();
+        if (!last.viewGraph)
+            return -1;
+        int visible = 0;
+        for (const ViewChain& chain : last.viewGraph->chains)
+            visible += chain.visible();
+        return visible;
+    };
+    QVERIFY(window_->setMethod(QStringLiteral("mesh")));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+
+    QVERIFY(!window_->keepOrientationAction()->isChecked());
+    QVERIFY(window_->openMesh(path));
+    const QString flipped = window_->statusBar()->currentMessage();
+    QVERIFY2(flipped.startsWith(QStringLiteral(
+                 "inward_sphere.obj: 1 of 1 closed components had inward normals (signed "
+                 "volume -")),
+             qPrintable(flipped));
+    QVERIFY2(
+        flipped.contains(QStringLiteral("; flipped (File › Keep file orientation keeps them)")),
+        qPrintable(flipped));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    QVERIFY(window_->runner() && window_->runner()->atEnd());
+    QCOMPARE(window_->statusBar()->currentMessage(), flipped);
+    QVERIFY(!window_->meshKeptFileOrientation());
+    const Snapshot input = window_->runner()->snapshot(0);
+    QVERIFY(input.cage->indices == sphere.indices);
+    QCOMPARE(input.notes.size(), size_t(1));
+    QCOMPARE(QString::fromStdString(input.notes.front()), flipped);
+    QCOMPARE(window_->phaseStepper()->displayedNotes(-1), QStringList{flipped});
+    QVERIFY(visibleChains() > 0);
+
+    window_->keepOrientationAction()->trigger();
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    QVERIFY(window_->meshKeptFileOrientation());
+    QCOMPARE(window_->meshPath(), path);
+    QVERIFY(window_->runner() && window_->runner()->atEnd());
+    QVERIFY(window_->runner()->snapshot(0).cage->indices == inward.indices);
+    const QString kept = window_->statusBar()->currentMessage();
+    QVERIFY2(kept.contains(QStringLiteral("has inward normals")) &&
+                 kept.contains(QStringLiteral("kept as in the file (File › Keep file "
+                                              "orientation): its contours will read as hidden")),
+             qPrintable(kept));
+    QCOMPARE(visibleChains(), 0);
+
+    window_->keepOrientationAction()->trigger();
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    QVERIFY(!window_->keepOrientationAction()->isChecked());
+    QVERIFY(window_->runner()->snapshot(0).cage->indices == sphere.indices);
+    QVERIFY(visibleChains() > 0);
 }
 
 void TestMainWindow::grabMainWindow() {

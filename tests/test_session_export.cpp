@@ -7,11 +7,13 @@
 // with its details), the PLY reloads with the labels of the snapshot; a
 // session saved and opened in a second window restores the method, the
 // analysis and view cameras, the parameters, the phase, the display and the
-// preset the parameters started from (shown modified when they differ); an
+// preset the parameters started from (shown modified when they differ) and
+// whether the mesh's inward faces were flipped or kept as in the file; an
 // export that cannot be written fails naming the file and leaves nothing
 // behind (a file kept aside is put back). Needs a display: run under
 // `xvfb-run -a` (Mesa llvmpipe).
 #include "AboutDialog.h"
+#include "ContourTestSupport.h"
 #include "ImageView2D.h"
 #include "MainWindow.h"
 #include "MethodComparison.h"
@@ -22,7 +24,9 @@
 #include "contours/Methods.h"
 #include "export/DiagnosticSnapshot.h"
 #include "export/SessionFile.h"
+#include "mesh/ProceduralShapes.h"
 #include "mesh/io/MeshReader.h"
+#include "mesh/io/MeshWriter.h"
 #include "pipeline/FieldNames.h"
 
 #include <QAction>
@@ -36,6 +40,7 @@
 #include <QSet>
 #include <QSettings>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QXmlStreamReader>
 #include <QtTest>
@@ -113,6 +118,7 @@ private slots:
     void exportSnapshot();
     void sessionRoundTrip();
     void sessionRestoresThePreset();
+    void sessionKeepsTheMeshOrientation();
     void failedExportLeavesNothing();
     void cleanupTestCase();
 };
@@ -436,6 +442,75 @@ void TestSessionExport::sessionRestoresThePreset() {
     const nlohmann::json resaved = readJson(again);
     QCOMPARE(resaved["preset"]["name"].get<std::string>(), std::string("paper"));
     QVERIFY(resaved["preset"]["changed"].empty());
+}
+
+// A sphere whose faces are oriented inward, opened flipped (the default) and
+// kept as in the file: each session records the choice, reopens the same
+// mesh whatever the window's toggle says, and sets the toggle; the
+// diagnostic snapshot's report notes the flip.
+void TestSessionExport::sessionKeepsTheMeshOrientation() {
+    const PolygonMesh outward = makeSphere(1.0, 12);
+    const PolygonMesh inward = testing::reversedFaces(outward);
+    const QString meshPath = dir_.filePath(QStringLiteral("inward.obj"));
+    writeObj(inward, meshPath.toStdString());
+
+    const auto openIn = [&](MainWindow& w, const QString& file, bool keep) {
+        w.setInteractive(false);
+        w.keepOrientationAction()->setChecked(keep);
+        QVERIFY(w.setMethod(QStringLiteral("mesh")));
+        QVERIFY2(w.openFile(file), qPrintable(w.lastError()));
+        QVERIFY(w.waitForIdle(kIdleTimeoutMs));
+        QVERIFY2(w.lastError().isEmpty(), qPrintable(w.lastError()));
+    };
+    const auto cageIndices = [](const MainWindow& w) {
+        return w.runner()->snapshot(0).cage->indices;
+    };
+    for (const bool keep : {false, true}) {
+        MainWindow first;
+        openIn(first, meshPath, keep);
+        QCOMPARE(first.meshKeptFileOrientation(), keep);
+        QVERIFY(cageIndices(first) == (keep ? inward : outward).indices);
+        const QString session = dir_.filePath(keep ? QStringLiteral("kept.cwsession")
+                                                   : QStringLiteral("flipped.cwsession"));
+        QVERIFY2(first.saveSession(session), qPrintable(first.lastError()));
+        QCOMPARE(readJson(session)["keep_file_orientation"].get<bool>(), keep);
+
+        // Opened where the toggle says the opposite: the session's choice wins.
+        MainWindow second;
+        openIn(second, session, !keep);
+        QCOMPARE(second.meshKeptFileOrientation(), keep);
+        QCOMPARE(second.keepOrientationAction()->isChecked(), keep);
+        QVERIFY(cageIndices(second) == cageIndices(first));
+        const QString message = second.statusBar()->currentMessage();
+        QVERIFY2(message.startsWith(QStringLiteral("Session ")) &&
+                     message.contains(keep ? QStringLiteral("kept as in the file")
+                                           : QStringLiteral("; flipped (")),
+                 qPrintable(message));
+
+        if (!keep) {
+            const QString out = dir_.filePath(QStringLiteral("flipped-snapshot"));
+            QVERIFY(QDir().mkpath(out));
+            QVERIFY2(second.exportDiagnosticSnapshot(out), qPrintable(second.lastError()));
+            const nlohmann::json notes = readJson(out + "/report.json")["mesh"]["notes"];
+            QCOMPARE(notes.size(), size_t(1));
+            QVERIFY2(notes[0].get<std::string>().find("inward.obj: 1 of 1 closed components had "
+                                                      "inward normals") == 0,
+                     notes.dump().c_str());
+            QCOMPARE(readJson(out + "/session.cwsession")["keep_file_orientation"].get<bool>(),
+                     false);
+        }
+    }
+
+    // The toggle is kept with the window's settings.
+    QAction* keep = window_->keepOrientationAction();
+    keep->setChecked(true);
+    window_->sessionController()->saveWindowSettings();
+    QCOMPARE(QSettings().value(QStringLiteral("mesh/keepFileOrientation")).toBool(), true);
+    keep->setChecked(false);
+    window_->sessionController()->restoreWindowSettings();
+    QVERIFY(keep->isChecked());
+    keep->setChecked(false);
+    window_->sessionController()->saveWindowSettings();
 }
 
 void TestSessionExport::failedExportLeavesNothing() {

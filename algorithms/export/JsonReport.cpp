@@ -48,6 +48,7 @@ nlohmann::json meshJson(const std::string& path, const Snapshot& input) {
         if (!box.isEmpty())
             j["bounding_box"] = {{"min", vec3(box.min)}, {"max", vec3(box.max)}};
     }
+    j["notes"] = input.notes;
     return j;
 }
 

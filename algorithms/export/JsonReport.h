@@ -7,7 +7,9 @@
 //   "tool":   {"name", "version"},
 //   "mesh":   {"path", "vertices", "faces" (as loaded), "polygon_faces" (faces
 //              with more than three corners), "triangles" (after
-//              triangulation), "edges", "boundary_edges", "bounding_box"},
+//              triangulation), "edges", "boundary_edges", "bounding_box",
+//              "notes" [text] (the input snapshot's: what loading the mesh
+//              noted, e.g. its orientation, mesh/Orientation.h)},
 //   "method": {"name", "label", "parameters" (ParameterSet::toJson),
 //              "preset": {"name" (the preset the run started from,
 //                         Method::presets), "changed" {name: value; the

@@ -100,6 +100,7 @@ nlohmann::json sessionJson(const Session& s) {
     j["format"] = kSessionFormat;
     j["version"] = kSessionVersion;
     j["mesh"] = s.meshPath;
+    j["keep_file_orientation"] = s.keepFileOrientation;
     j["method"] = s.method;
     j["parameters"] = s.parameters.toJson();
     j["preset"] = {{"name", s.preset}, {"changed", s.presetChanges.toJson()}};
@@ -135,6 +136,11 @@ Session sessionFromJson(const nlohmann::json& j) {
     s.meshPath = stringMember(j, "mesh");
     if (s.meshPath.empty())
         throw fieldError("mesh", "is empty");
+    if (j.contains("keep_file_orientation")) {
+        if (!j["keep_file_orientation"].is_boolean())
+            throw fieldError("keep_file_orientation", "must be true or false");
+        s.keepFileOrientation = j["keep_file_orientation"].get<bool>();
+    }
     s.method = stringMember(j, "method");
     const nlohmann::json& parameters = member(j, "parameters");
     if (!parameters.is_object())

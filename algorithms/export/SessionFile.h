@@ -9,6 +9,9 @@
 //   "format": "contour-workbench-session", "version": 1,
 //   "mesh": path of the mesh file (absolute when saved; a relative path is
 //           read relative to the session file's folder),
+//   "keep_file_orientation": optional (false when absent), true when the
+//           mesh was used as the file orients it, false when its inward
+//           closed components were flipped outward (mesh/Orientation.h),
 //   "method": method name (contourMethods()),
 //   "parameters": {name: value} every parameter of the method (bool,
 //                 number or choice string, as ParameterSet::toJson),
@@ -41,6 +44,10 @@ inline constexpr int kSessionVersion = 1;
 
 struct Session {
     std::string meshPath;
+    // The mesh as the file orients it (true) or with its inward closed
+    // components flipped (false, the default), so reopening gives the same
+    // mesh.
+    bool keepFileOrientation = false;
     std::string method;
     // As read or as captured: values keep their JSON type (an integer in the
     // file reads as int even for a double parameter); sessionParameters()

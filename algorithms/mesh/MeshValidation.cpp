@@ -1,7 +1,9 @@
 #include "mesh/MeshValidation.h"
 
 #include "core/Predicates.h"
+#include "core/UnionFind.h"
 #include "mesh/MeshError.h"
+#include "mesh/PolygonEdges.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,32 +59,6 @@ private:
     const MeshSourceMap& source_;
     bool vertexLines_;
     bool faceLines_;
-};
-
-class UnionFind {
-public:
-    explicit UnionFind(size_t n) : parent_(n) {
-        for (size_t i = 0; i < n; ++i)
-            parent_[i] = static_cast<Index>(i);
-    }
-    Index find(Index x) {
-        while (parent_[x] != x) {
-            parent_[x] = parent_[parent_[x]];
-            x = parent_[x];
-        }
-        return x;
-    }
-    bool unite(Index a, Index b) {
-        a = find(a);
-        b = find(b);
-        if (a == b)
-            return false;
-        parent_[std::max(a, b)] = std::min(a, b);
-        return true;
-    }
-
-private:
-    std::vector<Index> parent_;
 };
 
 void checkCoordinates(const PolygonMesh& mesh, const std::string& file, const Namer& name) {
@@ -164,87 +140,48 @@ void checkTopology(const PolygonMesh& mesh, const std::string& file, const Namer
     const Index vertexCount = mesh.vertexCount();
     const auto cornerCount = static_cast<Index>(mesh.indices.size());
     const std::vector<Index>& corner = mesh.indices;
-    // The half-edge of corner c runs from corner[c] to corner[next[c]].
-    std::vector<Index> cornerFace(static_cast<size_t>(cornerCount));
-    std::vector<Index> next(static_cast<size_t>(cornerCount));
-    for (Index f = 0; f < mesh.faceCount(); ++f) {
-        const Index first = mesh.offsets[f], last = mesh.offsets[f + 1];
-        for (Index c = first; c < last; ++c) {
-            cornerFace[c] = f;
-            next[c] = c + 1 < last ? c + 1 : first;
-        }
-    }
-
-    // Bucket the half-edges by their lower vertex (counting sort), then sort
-    // each small bucket by the upper one: linear time in practice. A bucket
-    // entry packs (upper vertex, corner) into one integer.
-    std::vector<Index> start(static_cast<size_t>(vertexCount) + 1, 0);
-    for (Index c = 0; c < cornerCount; ++c)
-        ++start[std::min(corner[c], corner[next[c]]) + 1];
-    for (Index v = 0; v < vertexCount; ++v)
-        start[v + 1] += start[v];
-    std::vector<std::uint64_t> halfedges(static_cast<size_t>(cornerCount));
-    {
-        std::vector<Index> fill(start.begin(), start.end() - 1);
-        for (Index c = 0; c < cornerCount; ++c) {
-            const Index a = corner[c], b = corner[next[c]];
-            halfedges[fill[std::min(a, b)]++] =
-                static_cast<std::uint64_t>(std::max(a, b)) << 32 | static_cast<std::uint32_t>(c);
-        }
-    }
-    const auto upper = [](std::uint64_t key) {
-        return static_cast<Index>(key >> 32);
-    };
-    const auto cornerOf = [](std::uint64_t key) {
-        return static_cast<Index>(key & 0xffffffffu);
-    };
+    const PolygonEdges edges = polygonEdges(mesh);
+    const std::vector<Index>& cornerFace = edges.cornerFace;
+    const std::vector<Index>& next = edges.next;
 
     UnionFind fans(static_cast<size_t>(cornerCount));
     std::vector<Index> fanCount(static_cast<size_t>(vertexCount), 0);
     for (const Index v : corner)
         ++fanCount[v];
     std::vector<Index> group;
-    for (Index v = 0; v < vertexCount; ++v) {
-        const auto first = halfedges.begin() + start[v];
-        const auto last = halfedges.begin() + start[v + 1];
-        std::sort(first, last);
-        for (auto it = first; it != last;) {
-            auto end = it + 1;
-            while (end != last && upper(*end) == upper(*it))
-                ++end;
-            const Index a = v, b = upper(*it);
-            if (end - it > 2) {
-                group.clear();
-                for (auto g = it; g != end; ++g)
-                    group.push_back(cornerFace[cornerOf(*g)]);
-                const Index lastFace = *std::max_element(group.begin(), group.end());
-                throw MeshError(file,
-                                name.hasFaceLines() ? name.faceLocation(lastFace) : name.edge(a, b),
-                                (name.hasFaceLines() ? name.edge(a, b) : std::string("the edge")) +
-                                    " is non-manifold: it is shared by " +
-                                    std::to_string(end - it) + " faces (" + name.faceList(group) +
-                                    "); an edge may border at most 2 faces");
+    for (Index e = 0; e < edges.edgeCount(); ++e) {
+        const std::span<const Index> halfedges = edges.halfedges(e);
+        const Index a = std::min(corner[halfedges[0]], corner[next[halfedges[0]]]);
+        const Index b = std::max(corner[halfedges[0]], corner[next[halfedges[0]]]);
+        if (halfedges.size() > 2) {
+            group.clear();
+            for (const Index c : halfedges)
+                group.push_back(cornerFace[c]);
+            const Index lastFace = *std::max_element(group.begin(), group.end());
+            throw MeshError(
+                file, name.hasFaceLines() ? name.faceLocation(lastFace) : name.edge(a, b),
+                (name.hasFaceLines() ? name.edge(a, b) : std::string("the edge")) +
+                    " is non-manifold: it is shared by " + std::to_string(halfedges.size()) +
+                    " faces (" + name.faceList(group) + "); an edge may border at most 2 faces");
+        }
+        if (halfedges.size() == 2) {
+            const Index c0 = halfedges[0], c1 = halfedges[1];
+            if (corner[c0] == corner[c1]) {
+                const Index f0 = cornerFace[c0], f1 = cornerFace[c1];
+                throw MeshError(
+                    file,
+                    name.hasFaceLines() ? name.faceLocation(std::max(f0, f1)) : name.edge(a, b),
+                    name.faceList({f0, f1}) + " both run along " + name.edge(a, b) + " from " +
+                        name.vertex(corner[c0]) + " to " + name.vertex(corner[next[c0]]) +
+                        ", so they are inconsistently oriented (one of them is "
+                        "flipped, or the surface is not orientable)");
             }
-            if (end - it == 2) {
-                const Index c0 = cornerOf(it[0]), c1 = cornerOf(it[1]);
-                if (corner[c0] == corner[c1]) {
-                    const Index f0 = cornerFace[c0], f1 = cornerFace[c1];
-                    throw MeshError(
-                        file,
-                        name.hasFaceLines() ? name.faceLocation(std::max(f0, f1)) : name.edge(a, b),
-                        name.faceList({f0, f1}) + " both run along " + name.edge(a, b) + " from " +
-                            name.vertex(corner[c0]) + " to " + name.vertex(corner[next[c0]]) +
-                            ", so they are inconsistently oriented (one of them is "
-                            "flipped, or the surface is not orientable)");
-                }
-                // c0 runs one way and c1 the other: the corners of the two
-                // faces at each end of the edge are joined.
-                if (fans.unite(c0, next[c1]))
-                    --fanCount[corner[c0]];
-                if (fans.unite(next[c0], c1))
-                    --fanCount[corner[c1]];
-            }
-            it = end;
+            // c0 runs one way and c1 the other: the corners of the two
+            // faces at each end of the edge are joined.
+            if (fans.unite(c0, next[c1]))
+                --fanCount[corner[c0]];
+            if (fans.unite(next[c0], c1))
+                --fanCount[corner[c1]];
         }
     }
 

@@ -165,11 +165,18 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
     CLI::Option* meshOption =
         app.add_option("--mesh", o.meshPath, "Mesh to read (.obj, .off, .ply). Required.")
             ->type_name("FILE");
+    app.add_flag("--keep-orientation", o.keepOrientation,
+                 "Use the mesh as the file orients its faces. By default each closed component "
+                 "whose faces are oriented inward (negative signed volume) is flipped outward, "
+                 "since its contours would all read as hidden; a line says which were flipped "
+                 "or kept.");
     CLI::Option* sessionOption =
         app.add_option("--session", o.sessionPath,
                        "Run what a workbench session file (.cwsession) holds: its mesh, method, "
-                       "parameters, analysis camera and phase reached. Parameter flags, "
-                       "--phase, --width, --height and --views26 override it.")
+                       "parameters, analysis camera, phase reached and whether it kept the "
+                       "file's orientation. Parameter flags, --phase, --width, --height and "
+                       "--views26 override it; --keep-orientation keeps the file's orientation "
+                       "even when the session flipped it.")
             ->type_name("FILE");
     CLI::Option* methodOption =
         app.add_option("--method", methodName,
@@ -299,6 +306,7 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
             throw BatchFailure(e.what());
         }
         o.meshPath = session.meshPath;
+        o.keepOrientation = o.keepOrientation || session.keepFileOrientation;
         methodName = session.method;
         o.sessionCamera = session.camera;
     }

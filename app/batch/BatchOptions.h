@@ -30,6 +30,10 @@ struct CameraOverrides {
 struct BatchOptions {
     bool listMethods = false;
     std::string meshPath;
+    // --keep-orientation (or a session that kept it): use the mesh as the
+    // file orients it; by default inward closed components are flipped
+    // (mesh/Orientation.h).
+    bool keepOrientation = false;
     const Method* method = nullptr;
     // --preset: the method's preset the parameters start from ("default"
     // unless given; with --session, the session's); parameter flags

@@ -9,6 +9,7 @@
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
 #include "mesh/MeshError.h"
+#include "mesh/Orientation.h"
 #include "mesh/io/MeshReader.h"
 #include "mesh/io/MeshWriter.h"
 #include "pipeline/Runner.h"
@@ -43,24 +44,38 @@ void checkOutputFolders(const BatchOptions& o) {
     }
 }
 
-std::shared_ptr<const PolygonMesh> loadMesh(const std::string& path) {
+// The mesh as read, oriented as --keep-orientation says, and what that did.
+std::shared_ptr<const PolygonMesh> loadMesh(const BatchOptions& o, std::string* orientation) {
     try {
-        return std::make_shared<const PolygonMesh>(readMesh(path));
+        OrientationReport report;
+        auto mesh = std::make_shared<const PolygonMesh>(
+            orientForContours(readMesh(o.meshPath), o.keepOrientation, report));
+        *orientation = orientationMessage(report, "--keep-orientation");
+        return mesh;
     } catch (const MeshError& e) {
         throw BatchFailure(e.what());
     } catch (const std::exception& e) {
-        throw BatchFailure(path + ": " + e.what());
+        throw BatchFailure(o.meshPath + ": " + e.what());
     }
 }
 
-// The method's input: the mesh as read and its triangulation.
-Snapshot readInput(const BatchOptions& o) {
-    const std::shared_ptr<const PolygonMesh> cage = loadMesh(o.meshPath);
+// The method's input: the mesh as loaded and its triangulation; what
+// loading noted about the mesh's orientation is printed and becomes a note
+// of the input (and so of the JSON report's "mesh").
+Snapshot readInput(const BatchOptions& o, std::ostream& out) {
+    std::string orientation;
+    const std::shared_ptr<const PolygonMesh> cage = loadMesh(o, &orientation);
+    Snapshot input;
     try {
-        return makeInputSnapshot(cage);
+        input = makeInputSnapshot(cage);
     } catch (const std::exception& e) {
         throw BatchFailure(o.meshPath + ": " + e.what());
     }
+    if (!orientation.empty()) {
+        input.notes.push_back(o.meshPath + ": " + orientation);
+        out << input.notes.back() << "\n";
+    }
+    return input;
 }
 
 // The mesh path a session file records, so it reopens from anywhere.
@@ -245,6 +260,7 @@ void addDiagnosticSnapshot(RunOutputs& r, const ViewRun& v, std::ostream& out) {
     run.snapshots = v.runner.snapshots();
     run.title = v.title;
     run.session.meshPath = r.absoluteMesh;
+    run.session.keepFileOrientation = o.keepOrientation;
     run.session.method = method.name;
     run.session.parameters = o.parameters;
     setSessionPreset(run.session, method, o.preset);
@@ -333,7 +349,7 @@ std::string viewOutputPath(const std::string& path, int view) {
 int runBatch(const BatchOptions& o, std::ostream& out) {
     checkOutputFolders(o);
     const std::optional<Camera> given = givenCamera(o, out);
-    const Snapshot input = readInput(o);
+    const Snapshot input = readInput(o, out);
     const std::vector<Camera> cameras = placeCameras(o, input.mesh->boundingBox(), given);
     const Method& method = *o.method;
     printRunHeader(out, o.meshPath, input, method, o.parameters);

@@ -17,6 +17,7 @@
 #include "contours/Methods.h"
 #include "export/CurveComparison.h"
 #include "mesh/MeshError.h"
+#include "mesh/Orientation.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 
@@ -277,6 +278,14 @@ void MainWindow::createActions() {
     openAction_->setShortcut(QKeySequence::Open);
     openAction_->setObjectName(QStringLiteral("openMesh"));
     openAction_->setIcon(resourceIcon(QStringLiteral("open")));
+    keepOrientationAction_ = file->addAction(tr("&Keep file orientation"));
+    keepOrientationAction_->setObjectName(QStringLiteral("keepFileOrientation"));
+    keepOrientationAction_->setCheckable(true);
+    keepOrientationAction_->setToolTip(
+        tr("Use meshes as their files orient the faces. Unchecked, each closed component whose "
+           "faces are oriented inward (negative signed volume) is flipped when the mesh is "
+           "opened, since all its contours would read as hidden"));
+    connect(keepOrientationAction_, &QAction::triggered, this, &MainWindow::reorientMesh);
     QAction* quitSeparator = file->addSeparator();
     QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
     quit->setObjectName(QStringLiteral("quit"));
@@ -584,11 +593,29 @@ void MainWindow::openFileDialog() {
         openMesh(path);
 }
 
+MainWindow::LoadedMesh MainWindow::readMeshFile(const QString& path, bool keepFileOrientation) {
+    OrientationReport report;
+    LoadedMesh loaded;
+    loaded.mesh = std::make_shared<const PolygonMesh>(
+        orientForContours(readMesh(path.toStdString()), keepFileOrientation, report));
+    loaded.keptFileOrientation = keepFileOrientation;
+    loaded.inwardComponents = report.inwardCount();
+    loaded.orientation = QString::fromStdString(
+        orientationMessage(report, tr("File › Keep file orientation").toStdString()));
+    return loaded;
+}
+
+QString MainWindow::meshOrientationMessage() const {
+    if (meshOrientation_.orientation.isEmpty())
+        return {};
+    return QFileInfo(meshName_).fileName() + QStringLiteral(": ") + meshOrientation_.orientation;
+}
+
 bool MainWindow::openMesh(const QString& path) {
-    std::shared_ptr<const PolygonMesh> mesh;
+    LoadedMesh loaded;
     QApplication::setOverrideCursor(Qt::WaitCursor);
     try {
-        mesh = std::make_shared<const PolygonMesh>(readMesh(path.toStdString()));
+        loaded = readMeshFile(path, keepOrientationAction_->isChecked());
     } catch (const MeshError& e) {
         QApplication::restoreOverrideCursor();
         showError(tr("Cannot open mesh"), QString::fromStdString(e.what()));
@@ -600,13 +627,21 @@ bool MainWindow::openMesh(const QString& path) {
         return false;
     }
     QApplication::restoreOverrideCursor();
-    if (!setMesh(std::move(mesh), path))
+    if (!installMesh(loaded, path))
         return false;
     sessions_->noteRecentFile(path);
     return true;
 }
 
 bool MainWindow::setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString& name) {
+    LoadedMesh loaded;
+    loaded.mesh = std::move(mesh);
+    loaded.keptFileOrientation = true; // in memory: used as it is
+    return installMesh(loaded, name);
+}
+
+bool MainWindow::installMesh(const LoadedMesh& loaded, const QString& name) {
+    const std::shared_ptr<const PolygonMesh>& mesh = loaded.mesh;
     if (!mesh) {
         showError(tr("Cannot open mesh"), tr("%1: no mesh").arg(name));
         return false;
@@ -624,9 +659,14 @@ bool MainWindow::setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString&
         showError(tr("Cannot open mesh"), tr("%1: the mesh has no faces").arg(name));
         return false;
     }
-    cage_ = std::move(mesh);
-    run_->setInput(std::move(input));
+    cage_ = mesh;
     meshName_ = name;
+    meshOrientation_ = loaded;
+    meshOrientation_.mesh.reset();
+    const QString orientation = meshOrientationMessage();
+    if (!orientation.isEmpty())
+        input.notes.push_back(orientation.toStdString());
+    run_->setInput(std::move(input));
 
     Viewport viewport = defaults_.fallbackViewport;
     const double ratio = sceneView_->devicePixelRatioF();
@@ -640,7 +680,32 @@ bool MainWindow::setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString&
     lastError_.clear();
     statusBar()->clearMessage();
     rebuildRunner(-1);
+    // A flipped (or kept inward) mesh changes what every method shows: said
+    // until the next message. Undecidable orientations only for a while.
+    if (!orientation.isEmpty())
+        statusBar()->showMessage(orientation, loaded.inwardComponents > 0 ? 0 : 8000);
     return true;
+}
+
+void MainWindow::reorientMesh() {
+    const bool keep = keepOrientationAction_->isChecked();
+    if (!cage_ || meshOrientation_.keptFileOrientation == keep ||
+        meshOrientation_.inwardComponents == 0 || !QFileInfo(meshName_).isFile())
+        return; // the open mesh would not change
+    LoadedMesh loaded;
+    try {
+        loaded = readMeshFile(meshName_, keep);
+    } catch (const std::exception& e) {
+        showError(tr("Cannot open mesh"), QString::fromStdString(e.what()));
+        return;
+    }
+    const std::optional<Camera> camera = run_->camera();
+    const Camera viewCamera = sceneView_->viewCamera();
+    const int phases = run_->hasRunner() ? run_->reachedPhases() : -1;
+    if (!camera ||
+        !restoreRun(loaded, meshName_, methodName(), methodPanel_->parameters(), *camera, phases))
+        return;
+    sceneView_->setViewCamera(viewCamera);
 }
 
 QString MainWindow::methodName() const {
@@ -1006,9 +1071,8 @@ bool MainWindow::exportDiagnosticSnapshot(const QString& folder) {
     return true;
 }
 
-bool MainWindow::restoreRun(std::shared_ptr<const PolygonMesh> mesh, const QString& name,
-                            const QString& method, const ParameterSet& parameters,
-                            const Camera& camera, int phases) {
+bool MainWindow::restoreRun(const LoadedMesh& mesh, const QString& name, const QString& method,
+                            const ParameterSet& parameters, const Camera& camera, int phases) {
     if (!findMethod(method.toStdString())) {
         showError(tr("Cannot restore the run"),
                   tr("%1: method \"%2\" is not available").arg(name, method));
@@ -1021,7 +1085,7 @@ bool MainWindow::restoreRun(std::shared_ptr<const PolygonMesh> mesh, const QStri
     // The mesh and the method would each start a run: only the last
     // rebuildRunner() below does.
     restoring_ = true;
-    const bool ok = setMesh(std::move(mesh), name) && setMethod(method);
+    const bool ok = installMesh(mesh, name) && setMethod(method);
     restoring_ = false;
     if (!ok)
         return false;

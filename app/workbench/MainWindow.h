@@ -51,13 +51,38 @@ public:
     explicit MainWindow(QWidget* parent = nullptr);
     ~MainWindow() override;
 
-    // Reads a mesh (OBJ, OFF, PLY), frames the analysis camera on it, makes
-    // the runner and starts running every phase. Returns false (and shows the
-    // error in a message box and the status bar) when the file cannot be
-    // used. The run goes on in the background: see waitForIdle().
+    // A mesh file as the workbench uses it: read, then with its inward closed
+    // components flipped outward unless the file's orientation is kept
+    // (mesh/Orientation.h).
+    struct LoadedMesh {
+        std::shared_ptr<const PolygonMesh> mesh;
+        bool keptFileOrientation = false;
+        int inwardComponents = 0; // closed components the file orients inward
+        // What orienting did or could not decide (orientationMessage), "" when
+        // there is nothing to say.
+        QString orientation;
+    };
+    // Throws MeshError (or std::exception) like readMesh().
+    static LoadedMesh readMeshFile(const QString& path, bool keepFileOrientation);
+
+    // Reads a mesh (OBJ, OFF, PLY; oriented as keepOrientationAction() says),
+    // frames the analysis camera on it, makes the runner and starts running
+    // every phase. What orienting did is shown in the status bar and is a
+    // note of the input snapshot. Returns false (and shows the error in a
+    // message box and the status bar) when the file cannot be used. The run
+    // goes on in the background: see waitForIdle().
     bool openMesh(const QString& path);
-    // Same for a mesh already in memory; `name` is shown in the title.
+    // Same for a mesh already in memory (used as it is); `name` is shown in
+    // the title.
     bool setMesh(std::shared_ptr<const PolygonMesh> mesh, const QString& name);
+    // File › Keep file orientation: checked, meshes are used as their files
+    // orient them. Toggling it reloads the open mesh when that changes it,
+    // keeping the method, parameters, cameras and phase reached.
+    QAction* keepOrientationAction() const { return keepOrientationAction_; }
+    // Whether the open mesh was used as its file orients it, and what
+    // orienting it said ("" when nothing), as "name: message".
+    bool meshKeptFileOrientation() const { return meshOrientation_.keptFileOrientation; }
+    QString meshOrientationMessage() const;
     bool hasMesh() const { return static_cast<bool>(cage_); }
     QString meshPath() const { return meshName_; }
 
@@ -145,9 +170,8 @@ public:
     bool openFile(const QString& path);
     // Shows a mesh already read with this method, parameters and analysis
     // camera, running only to `phases` (no intermediate run starts).
-    bool restoreRun(std::shared_ptr<const PolygonMesh> mesh, const QString& name,
-                    const QString& method, const ParameterSet& parameters, const Camera& camera,
-                    int phases);
+    bool restoreRun(const LoadedMesh& mesh, const QString& name, const QString& method,
+                    const ParameterSet& parameters, const Camera& camera, int phases);
     // Asks the running phase job to stop (Run › Cancel, Esc); returns at once.
     void cancelPhases();
     void reportError(const QString& title, const QString& message) { showError(title, message); }
@@ -192,6 +216,10 @@ private:
     void createSelection();
     void createLayout();
     void openFileDialog();
+    // The mesh, with what loading it noted as a note of the input snapshot.
+    bool installMesh(const LoadedMesh& mesh, const QString& name);
+    // Reloads the open mesh file after File › Keep file orientation changed.
+    void reorientMesh();
     void showError(const QString& title, const QString& message);
     // Makes a new runner for the current mesh, method, parameters and camera,
     // then runs to `completed` phases (-1: to the end).
@@ -244,6 +272,7 @@ private:
     bool updatingColorSelector_ = false;
 
     QAction* openAction_ = nullptr;
+    QAction* keepOrientationAction_ = nullptr;
     QAction* stepAction_ = nullptr;
     QAction* backAction_ = nullptr;
     QAction* runAction_ = nullptr;
@@ -261,6 +290,7 @@ private:
 
     std::shared_ptr<const PolygonMesh> cage_;
     QString meshName_;
+    LoadedMesh meshOrientation_; // how the open mesh was oriented (its mesh left empty)
     // What the window starts with (resources/settings/defaults.json).
     WorkbenchDefaults defaults_;
     RunController* run_ = nullptr;

@@ -7,7 +7,6 @@
 #include "SceneView3D.h"
 #include "contours/Methods.h"
 #include "mesh/MeshError.h"
-#include "mesh/io/MeshReader.h"
 
 #include <QAction>
 #include <QApplication>
@@ -28,6 +27,7 @@ const char* const kSessionFolderKey = "folders/session";
 const char* const kSnapshotFolderKey = "folders/snapshot";
 const char* const kGeometryKey = "window/geometry";
 const char* const kStateKey = "window/state";
+const char* const kKeepOrientationKey = "mesh/keepFileOrientation";
 
 // Stable names of the display toggles in a session file (not the menu
 // texts, which may change).
@@ -112,6 +112,7 @@ std::optional<Session> SessionController::capture(QString* error) const {
         return fail(tr("there is no analysis camera"));
     Session s;
     s.meshPath = QDir::cleanPath(mesh.absoluteFilePath()).toStdString();
+    s.keepFileOrientation = window_->meshKeptFileOrientation();
     s.method = window_->methodName().toStdString();
     const Runner* runner = window_->runner();
     s.parameters = runner ? runner->parameters() : window_->methodPanel()->parameters();
@@ -167,7 +168,7 @@ bool SessionController::open(const QString& path) {
     std::vector<std::string> warnings;
     int phases = 0;
     std::string preset;
-    std::shared_ptr<const PolygonMesh> mesh;
+    MainWindow::LoadedMesh mesh;
     try {
         session = readSession(path.toStdString());
         const Method* method = findMethod(session.method);
@@ -183,7 +184,8 @@ bool SessionController::open(const QString& path) {
         preset = sessionPresetName(session, *method, &warnings);
         QApplication::setOverrideCursor(Qt::WaitCursor);
         try {
-            mesh = std::make_shared<const PolygonMesh>(readMesh(session.meshPath));
+            mesh = MainWindow::readMeshFile(QString::fromStdString(session.meshPath),
+                                            session.keepFileOrientation);
         } catch (const MeshError& e) {
             QApplication::restoreOverrideCursor();
             throw std::runtime_error(path.toStdString() + ": the session's mesh: " + e.what());
@@ -193,10 +195,12 @@ bool SessionController::open(const QString& path) {
         window_->reportError(title, QString::fromStdString(e.what()));
         return false;
     }
-    if (!window_->restoreRun(std::move(mesh), QString::fromStdString(session.meshPath),
+    if (!window_->restoreRun(mesh, QString::fromStdString(session.meshPath),
                              QString::fromStdString(session.method), parameters, session.camera,
                              phases))
         return false;
+    // The session's mesh is oriented as it was saved; the menu shows it.
+    window_->keepOrientationAction()->setChecked(session.keepFileOrientation);
     window_->methodPanel()->setStartingPreset(QString::fromStdString(preset));
     applyDisplay(session);
     if (session.viewCamera)
@@ -205,7 +209,11 @@ bool SessionController::open(const QString& path) {
     QString message = tr("Session %1 opened").arg(QFileInfo(path).fileName());
     for (const std::string& w : warnings)
         message += QStringLiteral("; ") + QString::fromStdString(w);
-    window_->statusBar()->showMessage(message, warnings.empty() ? 5000 : 0);
+    const QString orientation = window_->meshOrientationMessage();
+    if (!orientation.isEmpty())
+        message += QStringLiteral("; ") + orientation;
+    window_->statusBar()->showMessage(message,
+                                      warnings.empty() && orientation.isEmpty() ? 5000 : 0);
     return true;
 }
 
@@ -284,6 +292,8 @@ void SessionController::restoreWindowSettings() {
         window_->restoreGeometry(settings.value(kGeometryKey).toByteArray());
     if (settings.contains(kStateKey))
         window_->restoreState(settings.value(kStateKey).toByteArray());
+    window_->keepOrientationAction()->setChecked(
+        settings.value(kKeepOrientationKey, false).toBool());
 }
 
 void SessionController::saveWindowSettings() const {
@@ -292,6 +302,7 @@ void SessionController::saveWindowSettings() const {
     QSettings settings;
     settings.setValue(kGeometryKey, window_->saveGeometry());
     settings.setValue(kStateKey, window_->saveState());
+    settings.setValue(kKeepOrientationKey, window_->keepOrientationAction()->isChecked());
 }
 
 void SessionController::saveDialog() {

@@ -1,14 +1,15 @@
 #pragma once
 // The workbench's sessions, recent files and kept settings:
 // - captures the window's state as a Session (export/SessionFile.h: mesh
-//   path, analysis camera, 3D view camera, method, parameters, phase reached,
-//   and the display choices as strings: colour field, overlay and view-graph
-//   toggles) and restores one through MainWindow::restoreRun, so that
-//   reopening gives the same picture;
+//   path and whether its file orientation was kept, analysis camera, 3D view
+//   camera, method, parameters, phase reached, and the display choices as
+//   strings: colour field, overlay and view-graph toggles) and restores one
+//   through MainWindow::restoreRun, so that reopening gives the same picture;
 // - the File menu's Open session…, Save session…, Export diagnostic
 //   snapshot… (SnapshotExport.h) and Open recent entries;
-// - QSettings: the recent meshes and sessions, the last folders used, and
-//   the window's geometry and dock/tool bar state.
+// - QSettings: the recent meshes and sessions, the last folders used, the
+//   window's geometry and dock/tool bar state, and File › Keep file
+//   orientation.
 #include "MainWindow.h"
 #include "export/SessionFile.h"
 
