@@ -228,11 +228,24 @@ void chainRows(const Snapshot& s, Index c, std::vector<InspectorRow>& rows) {
     rows.push_back({QStringLiteral("ambiguous"), yesNo(chain.ambiguous)});
     QString conflict = yesNo(chain.conflict);
     for (const VisibilityConflict& k : graph.conflicts)
-        if (k.chain == c)
+        if (k.chain == c) {
             conflict += QStringLiteral("; propagated QI %1, ray QI %2 (%3)")
                             .arg(k.propagatedQi)
                             .arg(k.rayQi)
                             .arg(QString::fromStdString(k.reason));
+            // Which propagation step and which ray disagree.
+            if (k.viaNode != kInvalidIndex)
+                conflict += QStringLiteral("; propagated from chain %1 across node %2 (%3)")
+                                .arg(k.fromChain)
+                                .arg(k.viaNode)
+                                .arg(QString::fromLatin1(toString(graph.nodes[k.viaNode].type)));
+            else
+                conflict += QStringLiteral("; the component's seed ray");
+            conflict += QStringLiteral("; ray from (%1, %2, %3)")
+                            .arg(k.rayOrigin.x(), 0, 'g', 6)
+                            .arg(k.rayOrigin.y(), 0, 'g', 6)
+                            .arg(k.rayOrigin.z(), 0, 'g', 6);
+        }
     rows.push_back({QStringLiteral("conflict"), conflict});
     rows.push_back({QStringLiteral("concave"), yesNo(chain.concave)});
     rows.push_back({QStringLiteral("simplified away"), yesNo(chain.simplifiedAway)});

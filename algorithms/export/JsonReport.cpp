@@ -125,6 +125,8 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
                           {"qi", chain.qi},
                           {"qi_lower_bound", chain.qiLowerBound},
                           {"rule", toString(chain.decidedBy)},
+                          {"propagated_from", chain.propagatedFrom},
+                          {"propagated_via", chain.propagatedVia},
                           {"ambiguous", chain.ambiguous},
                           {"concave", chain.concave},
                           {"conflict", chain.conflict},
@@ -164,7 +166,10 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
         conflicts.push_back({{"chain", c.chain},
                              {"propagated_qi", c.propagatedQi},
                              {"ray_qi", c.rayQi},
-                             {"reason", c.reason}});
+                             {"reason", c.reason},
+                             {"from_chain", c.fromChain},
+                             {"via_node", c.viaNode},
+                             {"ray_origin", vec3(c.rayOrigin)}});
     const ViewChainTally tally = graph.chainTally();
     nlohmann::json totals = {
         {"chains", graph.chains.size()},

@@ -102,6 +102,10 @@ struct ViewChain {
     int rayQi = -1;              // the chain's own ray test, when it had one
     bool conflict = false;       // a ray test and propagation disagree (both kept)
     bool simplifiedAway = false; // hidden by topological simplification (Bénard 2014 §9)
+    // QI propagation (tutorial §4.7): the chain this one's QI came from and
+    // the node between them; invalid for a seed or before propagation.
+    Index propagatedFrom = kInvalidIndex;
+    Index propagatedVia = kInvalidIndex;
     double lengthPixels = 0.0;
 
     bool visible() const { return qi == 0 && !simplifiedAway; }
@@ -153,6 +157,13 @@ struct VisibilityConflict {
     int propagatedQi = -1;
     int rayQi = -1;
     std::string reason;
+    // Which propagation step gave the propagated QI: the chain it came from
+    // and the node it crossed (both invalid for a component's seed, which a
+    // ray decided); and where the disagreeing ray starts (the midpoint of
+    // the chain's middle segment, chainRayQi).
+    Index fromChain = kInvalidIndex;
+    Index viaNode = kInvalidIndex;
+    Vec3 rayOrigin = Vec3::Zero();
 };
 
 // The chains counted as reports give them: visible (drawn solid), hidden

@@ -32,6 +32,7 @@
 #include "visibility/ConsistentVisibility.h"
 
 #include "visibility/NearFaceTest.h"
+#include "visibility/QiPropagation.h"
 #include "visibility/RayCaster.h"
 
 #include <algorithm>
@@ -421,7 +422,7 @@ void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, con
         c.decidedBy = v.rule;
         if (propagated >= 0 && (propagated > 0) != (c.qi > 0)) {
             c.conflict = true;
-            graph.conflicts.push_back({ci, propagated, c.qi, "consistent-vote"});
+            graph.conflicts.push_back(conflictOf(c, ci, propagated, c.qi, "consistent-vote"));
         }
     }
 }

@@ -17,17 +17,20 @@ struct Link {
     Index to;
     int delta;
     VisibilityRule rule;
+    Index node; // the node the link crosses
 };
 
 std::vector<std::vector<Link>> links(const ViewGraph& graph) {
     std::vector<std::vector<Link>> adjacency(graph.chains.size());
+    Index at = 0; // the node being linked
     auto link = [&](Index a, Index b, int delta, VisibilityRule rule) {
         if (a == kInvalidIndex || b == kInvalidIndex)
             return;
-        adjacency[a].push_back({b, delta, rule});
-        adjacency[b].push_back({a, -delta, rule});
+        adjacency[a].push_back({b, delta, rule, at});
+        adjacency[b].push_back({a, -delta, rule, at});
     };
-    for (const ViewNode& node : graph.nodes) {
+    for (; at < static_cast<Index>(graph.nodes.size()); ++at) {
+        const ViewNode& node = graph.nodes[at];
         switch (node.type) {
         case ViewNodeType::ImageIntersection:
         case ViewNodeType::HiddenFoldCrossing:
@@ -84,6 +87,27 @@ Index pickSeed(const ViewGraph& graph, const std::vector<Index>& component) {
 
 } // namespace
 
+Vec3 chainRayOrigin(const ViewChain& chain) {
+    const size_t segments = chain.segmentCount();
+    if (segments == 0)
+        return chain.points.empty() ? Vec3::Zero() : chain.points.front();
+    const size_t middle = segments / 2;
+    return 0.5 * (chain.points[middle] + chain.points[middle + 1]);
+}
+
+VisibilityConflict conflictOf(const ViewChain& chain, Index c, int propagatedQi, int rayQi,
+                              std::string reason) {
+    VisibilityConflict k;
+    k.chain = c;
+    k.propagatedQi = propagatedQi;
+    k.rayQi = rayQi;
+    k.reason = std::move(reason);
+    k.fromChain = chain.propagatedFrom;
+    k.viaNode = chain.propagatedVia;
+    k.rayOrigin = chainRayOrigin(chain);
+    return k;
+}
+
 int chainRayQi(const ViewChain& chain, const TriangleMesh& mesh, const Camera& camera,
                const RayCaster& rays, bool exact, std::vector<Index>* hits) {
     const size_t segments = chain.segmentCount();
@@ -91,7 +115,7 @@ int chainRayQi(const ViewChain& chain, const TriangleMesh& mesh, const Camera& c
         return exact ? rays.exactOccluders(chain.points.front(), camera, {})
                      : rays.occluders(chain.points.front(), camera, {}, hits);
     const size_t middle = segments / 2;
-    const Vec3 p = 0.5 * (chain.points[middle] + chain.points[middle + 1]);
+    const Vec3 p = chainRayOrigin(chain);
     const std::vector<Index> ignore = segmentFaces(mesh, chain, middle);
     return exact ? rays.exactOccluders(p, camera, ignore) : rays.occluders(p, camera, ignore, hits);
 }
@@ -173,6 +197,8 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
                     reached[l.to] = 1;
                     raw[l.to] = value;
                     graph.chains[l.to].decidedBy = l.rule;
+                    graph.chains[l.to].propagatedFrom = c;
+                    graph.chains[l.to].propagatedVia = l.node;
                     queue.push_back(l.to);
                 } else if (raw[l.to] != value) {
                     ++stats.cycleDisagreements;
@@ -193,10 +219,10 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
             ++stats.belowLowerBound;
             chain.qi = chain.qiLowerBound;
             chain.conflict = true;
-            graph.conflicts.push_back({static_cast<Index>(c), raw[c], chain.rayQi,
-                                       "propagated QI " + std::to_string(raw[c]) +
-                                           " below the lower bound " +
-                                           std::to_string(chain.qiLowerBound)});
+            graph.conflicts.push_back(conflictOf(chain, static_cast<Index>(c), raw[c], chain.rayQi,
+                                                 "propagated QI " + std::to_string(raw[c]) +
+                                                     " below the lower bound " +
+                                                     std::to_string(chain.qiLowerBound)));
         }
     }
 
@@ -235,8 +261,8 @@ void checkChainsWithRays(ViewGraph& graph, const TriangleMesh& mesh, const Camer
             ++stats->rayConflicts;
             chain.conflict = true;
             graph.conflicts.push_back(
-                {static_cast<Index>(c), chain.qi, check[c],
-                 "ray-check: the chain's own ray test disagrees with " + decidedBy});
+                conflictOf(chain, static_cast<Index>(c), chain.qi, check[c],
+                           "ray-check: the chain's own ray test disagrees with " + decidedBy));
         }
     }
     stats->checkRays += tested;

@@ -27,6 +27,13 @@ struct QiPropagationStats {
     long long correctedRays = 0;      // ... whose exact count differed from Embree's
 };
 
+// Where chainRayQi's ray starts: the midpoint of the chain's middle segment.
+Vec3 chainRayOrigin(const ViewChain& chain);
+// A conflict on chain c with its propagation step (the chain's propagatedFrom
+// and propagatedVia) and the origin of its ray.
+VisibilityConflict conflictOf(const ViewChain& chain, Index c, int propagatedQi, int rayQi,
+                              std::string reason);
+
 // The QI of a chain from one ray: the midpoint of its middle segment,
 // ignoring the faces adjacent to that segment's element (tutorial app. C.1).
 // exact: count with RayCaster::exactOccluders (every face, exact predicates).
