@@ -290,18 +290,8 @@ private slots:
         QVERIFY2(all.compared() >= 0.8 * sampled, qPrintable(describe(total)));
         if (asserted) {
             QCOMPARE(all.undecided, 0.0);
-            // The consistent method's curtain folds are the surface's cusps
-            // only: the zig-zags of its contour polyline are no nodes, so
-            // the sub-pixel folds of the mesh there are no longer excluded
-            // from the check and count as disagreement. Its floor is
-            // measured (tests/baselines/test_visibility_depth.json), below
-            // the 99.5 % of the other methods.
-            const double required =
-                method == "consistent"
-                    ? baseline("test_visibility_depth", meshFile.section('.', 0, 0).toStdString() +
-                                                            ": consistent visible agreement")
-                    : kRequiredVisibleAgreement;
-            QVERIFY2(all.visibleAgreement() >= required, qPrintable(describe(total)));
+            QVERIFY2(all.visibleAgreement() >= kRequiredVisibleAgreement,
+                     qPrintable(describe(total)));
             // A floor, not the target: a graph that hid everything
             // would pass the line above. Of the length the buffer sees, the
             // drawing must show at least 95 % (counting hidden chains that

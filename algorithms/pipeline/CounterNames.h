@@ -347,6 +347,10 @@ inline constexpr CounterName kCuspFoldsSidedByCurvature{"cusp-folds-sided-by-cur
                                                         "cusp folds sided by curvature"};
 inline constexpr CounterName kCurtainFoldsByTheNearFaceFallback{
     "curtain-folds-by-the-near-face-fallback", "curtain folds by the near-face fallback"};
+inline constexpr CounterName kChainsKeptFromPropagation{"chains-kept-from-propagation",
+                                                        "chains kept from propagation"};
+inline constexpr CounterName kChainsDecidedByVotes{"chains-decided-by-votes",
+                                                   "chains decided by votes"};
 inline constexpr CounterName kZigZagVerticesIgnored{"zig-zag-vertices-ignored",
                                                     "zig-zag vertices ignored"};
 inline constexpr CounterName kUnreliableNearFaceNodes{"unreliable-near-face-nodes",

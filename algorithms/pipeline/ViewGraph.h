@@ -106,6 +106,10 @@ struct ViewChain {
     // the node between them; invalid for a seed or before propagation.
     Index propagatedFrom = kInvalidIndex;
     Index propagatedVia = kInvalidIndex;
+    // The connected component of the propagation links, and whether a link
+    // at this chain disagreed with the QI reached another way.
+    Index component = kInvalidIndex;
+    bool cycleDisagreement = false;
     double lengthPixels = 0.0;
 
     bool visible() const { return qi == 0 && !simplifiedAway; }

@@ -360,6 +360,41 @@ int cuspConsistency(const ViewGraph& g, std::vector<ChainVote>& votes) {
     return changed;
 }
 
+// Per propagation component: 1 when none of its chains touches a vertex of
+// an inconsistent face, ends at a curtain fold that is not a cusp of the
+// surface (the near-face fallback), or disagrees with a ray, a bound or
+// another propagation path.
+std::vector<std::uint8_t> cleanComponents(const ViewGraph& g, const TriangleMesh& mesh,
+                                          const std::vector<std::uint8_t>& nearInconsistent) {
+    Index count = 0;
+    for (const ViewChain& c : g.chains)
+        count = std::max(count, c.component + 1);
+    std::vector<std::uint8_t> clean(static_cast<size_t>(count), 1);
+    auto fallbackFold = [&](Index node) {
+        return node != kInvalidIndex && g.nodes[node].type == ViewNodeType::CurtainFold &&
+               !g.nodes[node].smoothCusp;
+    };
+    for (const ViewChain& c : g.chains) {
+        if (c.component == kInvalidIndex)
+            continue;
+        bool dirty = c.conflict || c.cycleDisagreement || fallbackFold(c.startNode) ||
+                     fallbackFold(c.endNode);
+        if (c.source == SegmentSource::MeshEdge)
+            for (Index e : c.segmentElement) {
+                if (dirty || e == kInvalidIndex)
+                    break;
+                const Index h = mesh.edgeHalfedge(e);
+                dirty = nearInconsistent[static_cast<size_t>(mesh.from(h))] ||
+                        nearInconsistent[static_cast<size_t>(mesh.to(h))];
+            }
+        else
+            dirty = true; // faces, not edges: no consistency guarantee
+        if (dirty)
+            clean[static_cast<size_t>(c.component)] = 0;
+    }
+    return clean;
+}
+
 } // namespace
 
 void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camera,
@@ -367,7 +402,8 @@ void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, con
                                  const std::vector<std::uint8_t>& faceInconsistent,
                                  const std::vector<std::uint8_t>& vertexIsCusp,
                                  const ConsistentVisibilityOptions& options,
-                                 const std::vector<RayResult>* middleRays) {
+                                 const std::vector<RayResult>* middleRays,
+                                 ConsistentVisibilityStats* stats) {
     std::vector<std::uint8_t> vertexNearInconsistent(mesh.vertexCount(), 0);
     for (Index f = 0; f < mesh.faceCount() && f < static_cast<Index>(faceInconsistent.size()); ++f)
         if (faceInconsistent[f])
@@ -409,9 +445,23 @@ void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, con
     }
     cuspConsistency(graph, votes);
 
+    const std::vector<std::uint8_t> clean =
+        options.keepCleanPropagation ? cleanComponents(graph, mesh, vertexNearInconsistent)
+                                     : std::vector<std::uint8_t>{};
+    ConsistentVisibilityStats local;
+    ConsistentVisibilityStats& tally = stats ? *stats : local;
     for (Index ci = 0; ci < chainCount; ++ci) {
         ViewChain& c = graph.chains[ci];
         const int propagated = c.qi;
+        if (!clean.empty() && c.component != kInvalidIndex && propagated >= 0 &&
+            clean[static_cast<size_t>(c.component)]) {
+            // Propagation's QI and rule stand; the votes' per-segment rays
+            // stay on the chain for the inspector.
+            c.ambiguous = false;
+            ++tally.keptFromPropagation;
+            continue;
+        }
+        ++tally.voted;
         ChainVote& v = votes[ci];
         c.ambiguous = v.state == SegmentState::Ambiguous;
         if (c.ambiguous) { // still ambiguous: invisible (§8.4)

@@ -26,6 +26,18 @@ struct ConsistentVisibilityOptions {
     // §8.4 rule (b): a chain between two T-junctions shorter than this (in
     // pixels) takes the visibility of its visible mates.
     double shortChainPixels;
+    // Not in the paper: on a graph whose curtain folds are the surface's
+    // cusps, propagation is exact where the mesh is consistent. A chain whose
+    // propagation component holds no inconsistent face, no near-face
+    // fallback fold and no disagreement (ray check, bound, cycle) keeps its
+    // propagated QI; the §8.4 votes decide the other components.
+    bool keepCleanPropagation = false;
+};
+
+// How resolveConsistentVisibility decided the chains.
+struct ConsistentVisibilityStats {
+    long long keptFromPropagation = 0; // chains of clean components
+    long long voted = 0;               // chains decided by the §8.4 votes
 };
 
 // Bénard 2014 §8.4 on a built graph (chains/nodes typed, QI from propagation already set).
@@ -42,6 +54,7 @@ void resolveConsistentVisibility(ViewGraph& graph, const TriangleMesh& mesh, con
                                  const std::vector<std::uint8_t>& faceInconsistent,
                                  const std::vector<std::uint8_t>& vertexIsCusp,
                                  const ConsistentVisibilityOptions& options,
-                                 const std::vector<RayResult>* middleRays = nullptr);
+                                 const std::vector<RayResult>* middleRays = nullptr,
+                                 ConsistentVisibilityStats* stats = nullptr);
 
 } // namespace contour

@@ -158,6 +158,7 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
             const Index c = queue.front();
             queue.pop_front();
             components.back().push_back(c);
+            graph.chains[c].component = id;
             for (const Link& l : adjacency[c])
                 if (component[l.to] == kInvalidIndex) {
                     component[l.to] = id;
@@ -202,6 +203,8 @@ void propagateQi(ViewGraph& graph, const TriangleMesh& mesh, const Camera& camer
                     queue.push_back(l.to);
                 } else if (raw[l.to] != value) {
                     ++stats.cycleDisagreements;
+                    graph.chains[c].cycleDisagreement = true;
+                    graph.chains[l.to].cycleDisagreement = true;
                 }
             }
         }

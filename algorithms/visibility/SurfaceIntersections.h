@@ -1,19 +1,17 @@
 #pragma once
-// Surface–surface intersection curves of a triangle mesh (tutorial §4.2, "surface intersections" as a third curve type next to
-// contours and boundaries). Candidate face pairs (overlapping bounding boxes,
-// no shared vertex) come from a uniform grid of cells two face boxes wide,
-// searched cell by cell in parallel; a conservative double-precision plane
-// test (Shewchuk's orient3d error bound) drops the pairs certainly on one side
-// of each other's plane, and the others are sorted by face pair, so the
-// result does not depend on the thread count. A pair in generic position is
-// decided with CGAL's exact predicates (orient3d): its segment's two ends are
-// where an edge of one face crosses the other face, named exactly by that
-// (edge, face) pair; only their coordinates are rounded. Other pairs (a vertex
-// on the other face's plane, edges meeting, coplanar faces) go to CGAL's
-// exact triangle–triangle intersection (exact constructions kernel) and their
-// ends are classified exactly onto a mesh vertex, edge or face. Segments are
-// chained through these names (two ends with the same pair of simplices are
-// the same point), never by comparing floating-point positions.
+// Surface–surface intersection curves of a triangle mesh (tutorial §4.2, "surface intersections" as
+// a third curve type next to contours and boundaries). Candidate face pairs (overlapping bounding
+// boxes, no shared vertex) come from a uniform grid of cells two face boxes wide, searched cell by
+// cell in parallel; a conservative double-precision plane test (Shewchuk's orient3d error bound)
+// drops the pairs certainly on one side of each other's plane, and the others are sorted by face
+// pair, so the result does not depend on the thread count. A pair in generic position is decided
+// with CGAL's exact predicates (orient3d): its segment's two ends are where an edge of one face
+// crosses the other face, named exactly by that (edge, face) pair; only their coordinates are
+// rounded. Other pairs (a vertex on the other face's plane, edges meeting, coplanar faces) go to
+// CGAL's exact triangle–triangle intersection (exact constructions kernel) and their ends are
+// classified exactly onto a mesh vertex, edge or face. Segments are chained through these names
+// (two ends with the same pair of simplices are the same point), never by comparing floating-point
+// positions.
 //
 // Faces that share a vertex (or an edge) are skipped: they meet at that
 // vertex/edge, which is not an intersection curve, and testing them would

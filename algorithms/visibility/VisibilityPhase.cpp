@@ -33,6 +33,7 @@ constexpr const char* kCheckRays = "visibility-check-rays";
 constexpr const char* kNearFaceEpsilon = "near-face-epsilon";
 constexpr const char* kShortChain = "ambiguity-short-chain";
 constexpr const char* kCuspFolds = "curtain-folds-from-cusps";
+constexpr const char* kKeepPropagation = "visibility-keep-clean-propagation";
 constexpr const char* kSurfaceIntersections = "surface-intersections";
 constexpr const char* kVotes = "visibility-votes";
 constexpr const char* kIgnoredFaces = "visibility-ignored-faces";
@@ -88,6 +89,7 @@ struct VisibilityOptions {
     double nearFaceEpsilon = 0.0;      // consistent: near-face-epsilon
     double shortChainPixels = 0.0;     // consistent: ambiguity-short-chain
     bool smoothCuspFolds = false;      // consistent: curtain-folds-from-cusps
+    bool keepCleanPropagation = false; // consistent: visibility-keep-clean-propagation
     int votes = 0;                     // interpolated: visibility-votes
     std::string ignoredFaces;          // interpolated: visibility-ignored-faces
     static VisibilityOptions read(VisibilityFlavor flavor, const ParameterSet& p) {
@@ -99,6 +101,7 @@ struct VisibilityOptions {
             o.nearFaceEpsilon = p.getDouble(kNearFaceEpsilon);
             o.shortChainPixels = p.getDouble(kShortChain);
             o.smoothCuspFolds = p.getBool(kCuspFolds);
+            o.keepCleanPropagation = p.getBool(kKeepPropagation);
         }
         if (flavor == VisibilityFlavor::Interpolated) {
             o.votes = p.getInt(kVotes);
@@ -237,6 +240,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     std::vector<RayResult>* keepRays =
         flavor == VisibilityFlavor::Consistent ? &middleRays : nullptr;
     double qiSeconds = 0.0, checkSeconds = 0.0, consistentSeconds = 0.0;
+    ConsistentVisibilityStats resolved;
     const auto tQi = std::chrono::steady_clock::now();
     if (flavor == VisibilityFlavor::Interpolated) {
         // Tutorial §6.2.4: interpolated contours lie inside faces, not on the
@@ -270,9 +274,10 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         ConsistentVisibilityOptions consistent;
         consistent.nearFaceEpsilon = parameters.nearFaceEpsilon;
         consistent.shortChainPixels = parameters.shortChainPixels;
+        consistent.keepCleanPropagation = parameters.keepCleanPropagation;
         const auto tConsistent = std::chrono::steady_clock::now();
         resolveConsistentVisibility(*graph, mesh, ctx.camera, rays, faceInconsistent, cuspVertex,
-                                    consistent, keepRays);
+                                    consistent, keepRays, &resolved);
         consistentSeconds = secondsSince(tConsistent);
     }
     const double raySeconds = sceneSeconds + secondsSince(tQi);
@@ -339,6 +344,11 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter(counters::kMixedConvexityChains, static_cast<double>(built.mixedConvexityChains));
     if (flavor == VisibilityFlavor::Consistent) {
         s.setCounter(counters::kUnreliableNearFaceNodes, static_cast<double>(unreliable));
+        if (parameters.keepCleanPropagation) {
+            s.setCounter(counters::kChainsKeptFromPropagation,
+                         static_cast<double>(resolved.keptFromPropagation));
+            s.setCounter(counters::kChainsDecidedByVotes, static_cast<double>(resolved.voted));
+        }
         if (parameters.smoothCuspFolds) {
             s.setCounter(counters::kCurtainFoldsAtCusps,
                          static_cast<double>(built.smoothCuspFolds));
@@ -508,6 +518,17 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
              "Curtain folds only at the surface's cusps (the cusp vertices of §6.2 d), sided by "
              "the one-ring test, step 1; the near-face test (§8.1) only next to inconsistent "
              "faces. Off: the near-face test at every contour vertex (§8.1). Not in the paper.",
+             ParameterType::Bool,
+             true,
+             0,
+             0,
+             {}});
+        m.parameters.push_back(
+            {kKeepPropagation,
+             "Keep clean propagation",
+             "With curtain folds from cusps: a propagation component with no inconsistent face, "
+             "no near-face fold and no disagreement keeps its propagated QI; the §8.4 votes "
+             "decide the others. Off: the votes decide every chain (§8.4). Not in the paper.",
              ParameterType::Bool,
              true,
              0,

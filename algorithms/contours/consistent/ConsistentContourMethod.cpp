@@ -162,6 +162,7 @@ Method makeConsistentContourMethod() {
              {"surface-intersections", true},
              {"near-face-epsilon", 1.0},
              {"curtain-folds-from-cusps", false},
+             {"visibility-keep-clean-propagation", false},
          }},
     };
     m.outputs = consistentOutputs();
