@@ -274,7 +274,9 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         ConsistentVisibilityOptions consistent;
         consistent.nearFaceEpsilon = parameters.nearFaceEpsilon;
         consistent.shortChainPixels = parameters.shortChainPixels;
-        consistent.keepCleanPropagation = parameters.keepCleanPropagation;
+        // Propagation is exact only through the surface's own cusps.
+        consistent.keepCleanPropagation =
+            parameters.keepCleanPropagation && parameters.smoothCuspFolds;
         const auto tConsistent = std::chrono::steady_clock::now();
         resolveConsistentVisibility(*graph, mesh, ctx.camera, rays, faceInconsistent, cuspVertex,
                                     consistent, keepRays, &resolved);
@@ -344,7 +346,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter(counters::kMixedConvexityChains, static_cast<double>(built.mixedConvexityChains));
     if (flavor == VisibilityFlavor::Consistent) {
         s.setCounter(counters::kUnreliableNearFaceNodes, static_cast<double>(unreliable));
-        if (parameters.keepCleanPropagation) {
+        if (parameters.keepCleanPropagation && parameters.smoothCuspFolds) {
             s.setCounter(counters::kChainsKeptFromPropagation,
                          static_cast<double>(resolved.keptFromPropagation));
             s.setCounter(counters::kChainsDecidedByVotes, static_cast<double>(resolved.voted));
@@ -526,7 +528,7 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
         m.parameters.push_back(
             {kKeepPropagation,
              "Keep clean propagation",
-             "With curtain folds from cusps: a propagation component with no inconsistent face, "
+             "With curtain folds from cusps on: a propagation component with no inconsistent face, "
              "no near-face fold and no disagreement keeps its propagated QI; the §8.4 votes "
              "decide the others. Off: the votes decide every chain (§8.4). Not in the paper.",
              ParameterType::Bool,
