@@ -7,7 +7,6 @@
 // after every other contour vertex); the |g| bound at C vertices after
 // snapping; and the wiggle options aimed at the faces around cusps.
 #include "ContourTestSupport.h"
-#include "DenseGroundTruth.h"
 #include "contours/consistent/mesh/ConsistentMesh.h"
 #include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/numerics/ContourCuspSearch.h"
@@ -15,6 +14,7 @@
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
+#include "reference/DenseGroundTruth.h"
 #include "surface/SmoothSurfaceFactory.h"
 
 #include <QtTest>

@@ -1,7 +1,7 @@
 // The consistent method's view graph has the smooth surface's topology
 // (Bénard 2014 §8 on the consistent mesh of §6): its curtain folds are the
 // surface's cusps and its T-junctions the smooth contour's image crossings,
-// both counted by tests/DenseGroundTruth (a lattice of the same surface that
+// both counted by reference/DenseGroundTruth (a lattice of the same surface that
 // shares no contour code). Shapes made here, on views from a fixed seed: a
 // torus-knot tube (long, thin, with many cusps and crossings) and a sphere
 // with random bumps; plus spot and bob on a few protocol views (there, a few
@@ -11,8 +11,8 @@
 // On views without an inconsistent face, every fold is at a cusp vertex and
 // no visibility conflict remains.
 #include "ContourTestSupport.h"
-#include "DenseGroundTruth.h"
 #include "pipeline/FieldNames.h"
+#include "reference/DenseGroundTruth.h"
 #include "surface/SmoothSurfaceFactory.h"
 
 #include <QtTest>

@@ -4,10 +4,10 @@
 // methods on Catmull-Clark surfaces compared with it, view by view. The
 // floors and ceilings asserted are in tests/baselines/test_ground_truth.json.
 #include "ContourTestSupport.h"
-#include "DenseGroundTruth.h"
 #include "camera/Facing.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
+#include "reference/DenseGroundTruth.h"
 #include "surface/SmoothSurfaceFactory.h"
 
 #include <QtTest>

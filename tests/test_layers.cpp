@@ -1,6 +1,10 @@
 // The layers of algorithms/: dependencies point down only.
 //   core < mesh < camera < surface < pipeline < visibility < contours, and
 //   export includes nothing above pipeline and is included by no other layer;
+//   reference (the dense ground truth) includes core..pipeline and, from
+//   contours/, only the consistent mesh's charts (to read a method's
+//   preimages), never visibility/ or a method, and is included by no other
+//   layer;
 //   inside contours/consistent/: mesh < predicates < numerics < edits <
 //   phases < extensions < the method's own files (consistent/*.cpp);
 //   algorithms/ includes nothing from widgets/ or app/, and no Qt or VTK header.
@@ -61,6 +65,20 @@ std::string layerViolation(const std::string& from, const std::string& to) {
     const std::string& lb = b[0];
     if (lb == "export" && la != "export")
         return "only export/ includes export/ (" + la + " includes " + to + ")";
+    if (lb == "reference" && la != "reference")
+        return "only reference/ includes reference/ (" + la + " includes " + to + ")";
+    if (la == "reference") {
+        // The oracle shares no contour code with the methods.
+        const bool charts =
+            lb == "contours" && b.size() > 3 && b[1] == "consistent" && b[2] == "mesh";
+        if (lb == "contours" && !charts)
+            return "reference/ includes a contour method's code (" + to + ")";
+        if (lb == "visibility" || lb == "export")
+            return "reference/ includes " + lb + "/ (" + to + ")";
+        if (lb != "reference" && lb != "contours" && indexOf(kLayers, lb) < 0)
+            return "unknown layer " + lb;
+        return {};
+    }
     const int ra = la == "export" ? indexOf(kLayers, "pipeline") : indexOf(kLayers, la);
     const int rb = lb == "export" ? ra : indexOf(kLayers, lb);
     if (ra < 0)
@@ -131,6 +149,15 @@ private slots:
         QVERIFY(layerViolation("export/JsonReport.h", "pipeline/Snapshot.h").empty());
         QVERIFY(!layerViolation("export/JsonReport.h", "visibility/RayCaster.h").empty());
         QVERIFY(!layerViolation("contours/Methods.cpp", "export/JsonReport.h").empty());
+        QVERIFY(layerViolation("reference/X.cpp", "surface/SurfaceFields.h").empty());
+        QVERIFY(layerViolation("reference/X.cpp", "pipeline/Snapshot.h").empty());
+        QVERIFY(
+            layerViolation("reference/X.cpp", "contours/consistent/mesh/DomainCharts.h").empty());
+        QVERIFY(!layerViolation("reference/X.cpp", "contours/common/ContourChaining.h").empty());
+        QVERIFY(!layerViolation("reference/X.cpp", "contours/consistent/phases/X.h").empty());
+        QVERIFY(!layerViolation("reference/X.cpp", "visibility/ViewGraphBuilder.h").empty());
+        QVERIFY(!layerViolation("contours/Methods.cpp", "reference/DenseGroundTruth.h").empty());
+        QVERIFY(!layerViolation("surface/X.cpp", "reference/DenseGroundTruth.h").empty());
         QVERIFY(!layerViolation("core/Types.h", "widgets/SceneView3D.h").empty());
         QVERIFY(layerViolation("contours/consistent/phases/X.cpp",
                                "contours/consistent/numerics/Bisection.h")

@@ -3,6 +3,7 @@
 // from it, and checks what the views draw in grabbed images. Needs a display:
 // run under `xvfb-run -a -s "-screen 0 1600x1200x24"` (Mesa llvmpipe).
 #include "ContourTestSupport.h"
+#include "GroundTruthComputation.h"
 #include "ImageView2D.h"
 #include "MainWindow.h"
 #include "MethodPanel.h"
@@ -11,8 +12,11 @@
 #include "SceneView3D.h"
 #include "SurfaceFormat.h"
 #include "contours/Methods.h"
+#include "export/DiagnosticSnapshot.h"
 #include "mesh/ProceduralShapes.h"
 #include "mesh/io/MeshWriter.h"
+#include "reference/DenseGroundTruth.h"
+#include "surface/SmoothSurfaceFactory.h"
 
 #include <QApplication>
 #include <QCheckBox>
@@ -105,6 +109,25 @@ long long darkPixels(const QImage& image, const QRect& area) {
     return n;
 }
 
+QRect deviceRect(const QRectF& r, double ratio) {
+    return QRectF(r.topLeft() * ratio, r.size() * ratio).toAlignedRect();
+}
+
+// Pixels of the ground truth's teal (hue within 10°, clearly saturated)
+// inside `area`.
+long long groundTruthPixels(const QImage& image, const QRect& area) {
+    const QImage rgb = image.convertToFormat(QImage::Format_RGB32);
+    const double hue = sceneColors::kGroundTruth.toQColor().hsvHueF() * 360.0;
+    long long n = 0;
+    const QRect r = area.intersected(rgb.rect());
+    for (int y = r.top(); y <= r.bottom(); ++y)
+        for (int x = r.left(); x <= r.right(); ++x) {
+            const QColor c = QColor::fromRgb(rgb.pixel(x, y));
+            n += c.hsvSaturationF() > 0.35 && hueDistance(c.hsvHueF() * 360.0, hue) < 10.0;
+        }
+    return n;
+}
+
 QMessageBox* openMessageBox(QWidget* window) {
     for (QMessageBox* box : window->findChildren<QMessageBox*>())
         if (box->isVisible())
@@ -147,6 +170,7 @@ private slots:
     void eitherViewMaximised();
     void rightDockHoldsTogglesAndLegends();
     void decimatedCopyWhileDraggingLargeMesh();
+    void groundTruthOverlay();
 
 private:
     QString sample(const QString& name);
@@ -897,6 +921,7 @@ void TestMainWindow::rightDockHoldsTogglesAndLegends() {
         QVERIFY(actions.contains(
             window_->viewGraphAction(static_cast<MainWindow::ViewGraphToggle>(i))));
     QVERIFY(actions.contains(window_->controlCageAction()));
+    QVERIFY(actions.contains(window_->groundTruthAction()));
     // The facing legend is filled for the torus's front/back colouring.
     QVERIFY(window_->colorLegend()->text().contains(QStringLiteral("front")));
 }
@@ -968,6 +993,146 @@ void TestMainWindow::decimatedCopyWhileDraggingLargeMesh() {
     camera->SetViewUp(up);
     const QImage after = view->grabImage();
     QVERIFY(after == before);
+}
+
+// View › Overlays › Ground-truth contour on the spot sample: disabled for the
+// mesh method on the cage; with the consistent method it computes the dense
+// ground truth for the analysis camera in the background and both views draw
+// exactly what DenseGroundTruth gives for that camera, with its legend entry;
+// the exported 2D picture gains teal pixels; a new analysis camera computes
+// it again on the cached lattice; unchecking (or a method without a smooth
+// surface) clears it.
+void TestMainWindow::groundTruthOverlay() {
+    QAction* toggle = window_->groundTruthAction();
+    QVERIFY(toggle && toggle->isCheckable());
+    QVERIFY(!toggle->isChecked());
+    QVERIFY(window_->setMethod(QStringLiteral("mesh")));
+    QVERIFY(window_->openMesh(sample(QStringLiteral("spot_control_mesh"))));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    // The mesh method on the triangulated cage (surface = none).
+    QVERIFY(toggle->isVisible());
+    QVERIFY(!toggle->isEnabled());
+    QVERIFY2(toggle->toolTip().contains(QStringLiteral("surface = none")),
+             qPrintable(toggle->toolTip()));
+
+    QVERIFY(window_->setMethod(QStringLiteral("consistent")));
+    QVERIFY(window_->waitForIdle(300000));
+    QVERIFY2(window_->lastError().isEmpty(), qPrintable(window_->lastError()));
+    QVERIFY(toggle->isEnabled());
+    ImageView2D* image = window_->imageView();
+    SceneView3D* scene = window_->sceneView();
+    QVERIFY(!image->showsGroundTruth() && !scene->hasGroundTruth());
+    const QString withoutDir = tmp_.filePath(QStringLiteral("without_ground_truth"));
+    QVERIFY(QDir().mkpath(withoutDir));
+    QVERIFY2(window_->exportDiagnosticSnapshot(withoutDir), qPrintable(window_->lastError()));
+
+    toggle->setChecked(true);
+    GroundTruthComputation* computation = window_->groundTruth();
+    QVERIFY(computation->isRunning()); // in the background
+    QVERIFY(computation->waitForResult(120000));
+    QVERIFY2(computation->error().isEmpty(), qPrintable(computation->error()));
+    QVERIFY(computation->result());
+    const GroundTruthResult result = *computation->result();
+    QVERIFY(!result.samplingReused);
+    const Camera camera = *window_->analysisCamera();
+    QCOMPARE(computation->request()->camera, camera);
+
+    // The oracle computed here for the same surface, lattice and camera.
+    const std::shared_ptr<const PolygonMesh> cage = window_->currentSnapshot().cage;
+    QVERIFY(cage);
+    const auto surface = cachedSmoothSurface(cage, automaticSurfaceKind(*cage)).surface;
+    QCOMPARE(result.samples, GroundTruthComputation::latticeSteps(surface->domain().faceCount()));
+    const DenseGroundTruth oracle(surface, {result.samples});
+    const GroundTruth truth = oracle.compute(camera);
+    const int crossings = imageCrossings(truth, camera);
+    qInfo("ground truth on spot: N = %d, %zu loops, %zu cusps, %d crossings in %.2f s",
+          result.samples, truth.loops.size(), truth.cusps.size(), crossings, result.totalSeconds);
+    QVERIFY(!truth.loops.empty());
+    QCOMPARE(result.truth->loops.size(), truth.loops.size());
+    QCOMPARE(result.truth->cusps.size(), truth.cusps.size());
+    QCOMPARE(result.imageCrossings, crossings);
+    size_t points = 0, shownPoints = 0;
+    for (size_t l = 0; l < truth.loops.size(); ++l) {
+        points += truth.loops[l].points.size();
+        shownPoints += result.truth->loops[l].points.size();
+    }
+    QCOMPARE(shownPoints, points);
+    // Both views draw all of it.
+    QVERIFY(image->showsGroundTruth());
+    QCOMPARE(image->groundTruthLoopsDrawn(), static_cast<int>(truth.loops.size()));
+    QCOMPARE(image->groundTruthCuspsDrawn(), static_cast<int>(truth.cusps.size()));
+    QCOMPARE(scene->groundTruthLoopsShown(), static_cast<long long>(truth.loops.size()));
+    QCOMPARE(scene->groundTruthCuspsShown(), static_cast<long long>(truth.cusps.size()));
+    QCOMPARE(scene->groundTruthLoopData()->GetNumberOfPoints(), static_cast<vtkIdType>(points));
+    const QString legend = QStringLiteral("ground truth: %1 loops, %2 cusps, %3 crossings (N = %4)")
+                               .arg(truth.loops.size())
+                               .arg(truth.cusps.size())
+                               .arg(crossings)
+                               .arg(result.samples);
+    QCOMPARE(image->groundTruthLegend(), legend);
+    QVERIFY2(image->legendTexts().contains(legend), qPrintable(image->legendTexts().join('|')));
+    const QString status = window_->statusBar()->currentMessage();
+    QVERIFY2(status.startsWith(QStringLiteral("Ground truth (N = %1").arg(result.samples)) &&
+                 status.contains(QStringLiteral(" s ")),
+             qPrintable(status));
+
+    // The exported 2D picture: teal lines only with the overlay.
+    const QString withDir = tmp_.filePath(QStringLiteral("with_ground_truth"));
+    QVERIFY(QDir().mkpath(withDir));
+    QVERIFY2(window_->exportDiagnosticSnapshot(withDir), qPrintable(window_->lastError()));
+    const QImage without(QDir(withoutDir).filePath(QString::fromLatin1(snapshotFiles::kPng2d)));
+    const QImage with(QDir(withDir).filePath(QString::fromLatin1(snapshotFiles::kPng2d)));
+    QVERIFY(!without.isNull() && !with.isNull());
+    QCOMPARE(with.size(), without.size());
+    QVERIFY(with != without);
+    with.save(grabPath(QStringLiteral("ground_truth_2d")));
+    // The file keeps the device pixels, not their ratio.
+    const QRect frame =
+        deviceRect(image->imageRect(), static_cast<double>(with.width()) / image->width());
+    const long long tealWith = groundTruthPixels(with, frame);
+    const long long tealWithout = groundTruthPixels(without, frame);
+    qInfo("teal pixels in the 2D image: %lld with the ground truth, %lld without", tealWith,
+          tealWithout);
+    QVERIFY(tealWith > 200);
+    QVERIFY(tealWithout < tealWith / 20);
+
+    // A new analysis camera: computed again, on the lattice sampled before.
+    scene->orbit(40.0, 15.0);
+    window_->setAnalysisCameraFromView();
+    QVERIFY(!image->showsGroundTruth()); // the old one does not fit the new camera
+    QVERIFY(window_->waitForIdle(300000));
+    QVERIFY(computation->waitForResult(120000));
+    QVERIFY(computation->result());
+    QCOMPARE(computation->request()->camera, *window_->analysisCamera());
+    QVERIFY(computation->result()->samplingReused);
+    const GroundTruth turned = oracle.compute(*window_->analysisCamera());
+    QCOMPARE(image->groundTruthLoopsDrawn(), static_cast<int>(turned.loops.size()));
+    QCOMPARE(image->groundTruthCuspsDrawn(), static_cast<int>(turned.cusps.size()));
+    QCOMPARE(scene->groundTruthLoopsShown(), static_cast<long long>(turned.loops.size()));
+
+    // Off: both views drop it, and so does the legend.
+    toggle->setChecked(false);
+    QVERIFY(!computation->result() && !computation->isRunning());
+    QVERIFY(!image->showsGroundTruth() && !scene->hasGroundTruth());
+    QCOMPARE(image->groundTruthLoopsDrawn(), 0);
+    QCOMPARE(scene->groundTruthLoopsShown(), 0LL);
+    QVERIFY(image->groundTruthLegend().isEmpty());
+    for (const QString& text : image->legendTexts())
+        QVERIFY2(!text.startsWith(QStringLiteral("ground truth")), qPrintable(text));
+    const QImage off = image->grab().toImage();
+    QVERIFY(groundTruthPixels(off, deviceRect(image->imageRect(), off.devicePixelRatio())) <
+            tealWith / 20);
+
+    // On again, then a method on the cage: disabled and cleared.
+    toggle->setChecked(true);
+    QVERIFY(computation->waitForResult(120000));
+    QVERIFY(image->showsGroundTruth());
+    QVERIFY(window_->setMethod(QStringLiteral("mesh")));
+    QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+    QVERIFY(!toggle->isEnabled());
+    QVERIFY(!computation->request());
+    QVERIFY(!image->showsGroundTruth() && !scene->hasGroundTruth());
+    toggle->setChecked(false);
 }
 
 int main(int argc, char** argv) {

@@ -72,25 +72,17 @@ void TestResources::everyIconIsADrawing() {
 void TestResources::actionsHaveTheirIcons() {
     MainWindow window;
     // The menu and tool-bar actions that are drawn with an icon.
-    const QStringList withIcons{QStringLiteral("openMesh"),
-                                QStringLiteral("openSession"),
-                                QStringLiteral("saveSession"),
-                                QStringLiteral("exportSnapshot"),
-                                QStringLiteral("quit"),
-                                QStringLiteral("step"),
-                                QStringLiteral("back"),
-                                QStringLiteral("runToEnd"),
-                                QStringLiteral("reset"),
-                                QStringLiteral("cancel"),
-                                QStringLiteral("cameraFromView"),
-                                QStringLiteral("lookThroughCamera"),
-                                QStringLiteral("controlCage"),
-                                QStringLiteral("layout-both"),
-                                QStringLiteral("layout-3d"),
-                                QStringLiteral("layout-2d"),
-                                QStringLiteral("nextInconsistentFace"),
-                                QStringLiteral("clearSelection"),
-                                QStringLiteral("about")};
+    const QStringList withIcons{
+        QStringLiteral("openMesh"),       QStringLiteral("openSession"),
+        QStringLiteral("saveSession"),    QStringLiteral("exportSnapshot"),
+        QStringLiteral("quit"),           QStringLiteral("step"),
+        QStringLiteral("back"),           QStringLiteral("runToEnd"),
+        QStringLiteral("reset"),          QStringLiteral("cancel"),
+        QStringLiteral("cameraFromView"), QStringLiteral("lookThroughCamera"),
+        QStringLiteral("controlCage"),    QStringLiteral("groundTruthContour"),
+        QStringLiteral("layout-both"),    QStringLiteral("layout-3d"),
+        QStringLiteral("layout-2d"),      QStringLiteral("nextInconsistentFace"),
+        QStringLiteral("clearSelection"), QStringLiteral("about")};
     for (const QString& name : withIcons) {
         auto* action = window.findChild<QAction*>(name);
         QVERIFY2(action, qPrintable(name));

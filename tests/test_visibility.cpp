@@ -7,7 +7,7 @@
 // contours are never visible and every chain's own ray test agrees with the
 // propagated QI.
 #include "ContourTestSupport.h"
-#include "DenseGroundTruth.h"
+#include "reference/DenseGroundTruth.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "visibility/ImageIntersections.h"
 #include "visibility/RayCaster.h"

@@ -2,7 +2,9 @@
 // writes a PNG of the whole window at the size asked for, which shows the
 // shaded surface (the 3D view's GL content was grabbed, not black) and more
 // than a few colours; a planned method, a missing mesh or an unwritable
-// output fail with a message and write nothing; --help documents the option.
+// output fail with a message and write nothing; --help documents the option;
+// --ground-truth draws the dense ground truth's teal over the consistent
+// method's drawing, and says why when the method has no smooth surface.
 // Needs a display: run under `xvfb-run -a -s "-screen 0 1600x1200x24"`.
 #include <QColor>
 #include <QFile>
@@ -19,6 +21,7 @@ namespace {
 
 const char* const kProgram = CONTOUR_BINARY_DIR "/app/workbench/contour-workbench";
 const char* const kTorus = CONTOUR_SOURCE_DIR "/samples/torus.obj";
+const char* const kSpot = CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj";
 
 struct Run {
     int exitCode = -1;
@@ -74,6 +77,39 @@ private slots:
         QVERIFY2(r.out.contains(QStringLiteral("--screenshot <FILE.png>")), qPrintable(r.out));
         QVERIFY(r.out.contains(QStringLiteral("--method <NAME>")));
         QVERIFY(r.out.contains(QStringLiteral("--size <WxH>")));
+        QVERIFY(r.out.contains(QStringLiteral("--ground-truth")));
+    }
+
+    void drawsTheGroundTruthWhenAsked() {
+        const QString png = dir_.filePath(QStringLiteral("spot-ground-truth.png"));
+        const QStringList args{QString::fromLatin1(kSpot), QStringLiteral("--method"),
+                               QStringLiteral("consistent"), QStringLiteral("--size"),
+                               QStringLiteral("1400x850")};
+        Run r = run(args + QStringList{QStringLiteral("--ground-truth"),
+                                       QStringLiteral("--screenshot"), png});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QImage with;
+        QVERIFY2(with.load(png, "PNG"), qPrintable(png));
+        const QString plainPng = dir_.filePath(QStringLiteral("spot.png"));
+        r = run(args + QStringList{QStringLiteral("--screenshot"), plainPng});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QImage without;
+        QVERIFY2(without.load(plainPng, "PNG"), qPrintable(plainPng));
+        // The ground truth's teal (resources/colormaps/scene-colors.json).
+        const QColor teal = QColor::fromRgbF(0.0f, 0.62f, 0.53f);
+        const long long tealWith = pixelsOfHue(with.convertToFormat(QImage::Format_RGB32), teal);
+        const long long tealWithout =
+            pixelsOfHue(without.convertToFormat(QImage::Format_RGB32), teal);
+        QVERIFY2(tealWith > 1000 && tealWithout < tealWith / 5,
+                 qPrintable(
+                     QStringLiteral("%1 teal pixels, %2 without").arg(tealWith).arg(tealWithout)));
+        // The mesh method on the cage has no smooth surface.
+        const QString never = dir_.filePath(QStringLiteral("never-ground-truth.png"));
+        r = run({QString::fromLatin1(kSpot), QStringLiteral("--method"), QStringLiteral("mesh"),
+                 QStringLiteral("--ground-truth"), QStringLiteral("--screenshot"), never});
+        QCOMPARE(r.exitCode, 1);
+        QVERIFY2(r.err.contains(QStringLiteral("surface = none")), qPrintable(r.err));
+        QVERIFY(!QFile::exists(never));
     }
 
     void writesThePictureOfTheWindow() {

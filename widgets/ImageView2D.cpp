@@ -80,6 +80,37 @@ void drawGlyph(QPainter& painter, const QPointF& c, NodeGlyph glyph, const QColo
     }
 }
 
+// Appends the polyline through `points` (each placed by `position`; a
+// closed one joins back to its first point) to `path`, projected by
+// `camera` into image pixels. A segment is drawn when both ends are in front
+// of the eye. Returns the segments appended.
+template <class Points, class Position>
+int appendProjected(QPainterPath& path, const Camera& camera, const Points& points, bool closed,
+                    Position position) {
+    const size_t n = points.size();
+    if (n == 0)
+        return 0;
+    const size_t count = closed ? n + 1 : n;
+    bool penDown = false;
+    int segments = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const ProjectedPoint p = camera.project(position(points[i % n]));
+        if (!(p.depth > 0.0) || !p.pixel.allFinite()) {
+            penDown = false;
+            continue;
+        }
+        const QPointF q(p.pixel.x(), p.pixel.y());
+        if (penDown) {
+            path.lineTo(q);
+            ++segments;
+        } else {
+            path.moveTo(q);
+        }
+        penDown = true;
+    }
+    return segments;
+}
+
 } // namespace
 
 ImageView2D::ImageView2D(QWidget* parent) : QWidget(parent) {
@@ -97,23 +128,8 @@ void ImageView2D::setScene(const Snapshot& snapshot, const Camera& camera) {
             if (curve.points.size() < 2)
                 continue;
             ProjectedCurve projected{curve.type, {}};
-            // A segment is drawn when both ends are in front of the eye.
-            bool penDown = false;
-            const size_t n = curve.points.size();
-            const size_t count = curve.closed ? n + 1 : n;
-            for (size_t i = 0; i < count; ++i) {
-                const ProjectedPoint p = camera.project(curve.points[i % n].position);
-                if (!(p.depth > 0.0) || !p.pixel.allFinite()) {
-                    penDown = false;
-                    continue;
-                }
-                const QPointF q(p.pixel.x(), p.pixel.y());
-                if (penDown)
-                    projected.path.lineTo(q);
-                else
-                    projected.path.moveTo(q);
-                penDown = true;
-            }
+            appendProjected(projected.path, camera, curve.points, curve.closed,
+                            [](const CurvePoint& p) { return p.position; });
             contours += curve.type == CurveType::Contour;
             boundaries += curve.type == CurveType::Boundary;
             others += curve.type == CurveType::SurfaceIntersection;
@@ -142,6 +158,7 @@ void ImageView2D::setScene(const Snapshot& snapshot, const Camera& camera) {
             caption_ += QStringLiteral(", %1 intersections").arg(others);
     }
     rebuildViewGraph();
+    rebuildGroundTruth();
     update();
 }
 
@@ -152,7 +169,9 @@ void ImageView2D::clearScene() {
     graph_.reset();
     mesh_.reset();
     comparison_.reset();
+    groundTruth_.reset();
     rebuildViewGraph();
+    rebuildGroundTruth();
     update();
 }
 
@@ -227,6 +246,88 @@ void ImageView2D::paintComparison(QPainter& painter, const QRectF& frame) const 
     painter.setPen(QColor(30, 30, 30));
     painter.drawText(box, Qt::AlignLeft | Qt::AlignBottom | Qt::TextWordWrap, comparisonCaption());
     painter.restore();
+}
+
+void ImageView2D::setGroundTruth(std::shared_ptr<const GroundTruth> truth, int imageCrossings) {
+    groundTruth_ = std::move(truth);
+    groundTruthCrossings_ = imageCrossings;
+    rebuildGroundTruth();
+    update();
+}
+
+void ImageView2D::clearGroundTruth() {
+    groundTruth_.reset();
+    rebuildGroundTruth();
+    update();
+}
+
+void ImageView2D::rebuildGroundTruth() {
+    groundTruthPath_ = QPainterPath();
+    groundTruthCusps_.clear();
+    groundTruthDrawn_ = GroundTruthCounts();
+    if (!groundTruth_ || !camera_)
+        return;
+    const Camera& camera = *camera_;
+    for (const GroundTruthLoop& loop : groundTruth_->loops)
+        groundTruthDrawn_.loops +=
+            appendProjected(groundTruthPath_, camera, loop.points, loop.closed,
+                            [](const Vec3& p) { return p; }) > 0;
+    for (const GroundTruthCusp& cusp : groundTruth_->cusps) {
+        const ProjectedPoint p = camera.project(cusp.position);
+        if (!(p.depth > 0.0) || !p.pixel.allFinite())
+            continue;
+        groundTruthCusps_.push_back(p.pixel);
+        ++groundTruthDrawn_.cusps;
+    }
+}
+
+QString ImageView2D::groundTruthLegend() const {
+    if (!groundTruth_)
+        return {};
+    return tr("ground truth: %1 loops, %2 cusps, %3 crossings (N = %4)")
+        .arg(groundTruth_->loops.size())
+        .arg(groundTruth_->cusps.size())
+        .arg(groundTruthCrossings_)
+        .arg(groundTruth_->samples);
+}
+
+void ImageView2D::paintGroundTruth(QPainter& painter, const QRectF& frame) const {
+    const QColor color = sceneColors::kGroundTruth.toQColor();
+    painter.save();
+    painter.setClipRect(frame);
+    painter.save();
+    const double scale = frame.width() / camera_->viewport.width;
+    painter.translate(frame.topLeft());
+    painter.scale(scale, scale);
+    painter.setBrush(Qt::NoBrush);
+    painter.setPen(linePen(color, sceneColors::kGroundTruthLineWidth2D, Qt::SolidLine));
+    painter.drawPath(groundTruthPath_);
+    painter.restore();
+    // Rings at a fixed screen size: the method's own cusp glyph stays
+    // visible inside.
+    painter.setPen(linePen(color, 1.5, Qt::SolidLine));
+    painter.setBrush(Qt::NoBrush);
+    const double r = 0.5 * sceneColors::kGroundTruthCuspSize2D;
+    for (const Vec2& pixel : groundTruthCusps_)
+        painter.drawEllipse(toWidget(pixel), r, r);
+    painter.restore();
+}
+
+void ImageView2D::appendGroundTruthLegend(std::vector<LegendEntry>& entries) const {
+    if (!groundTruth_)
+        return;
+    const QColor color = sceneColors::kGroundTruth.toQColor();
+    entries.push_back({LegendEntry::ThinLine, color, NodeGlyph::Ring, groundTruthLegend()});
+    if (!groundTruth_->cusps.empty())
+        entries.push_back(
+            {LegendEntry::SmallRing, color, NodeGlyph::Ring, tr("ground-truth cusp")});
+}
+
+QStringList ImageView2D::legendTexts() const {
+    QStringList texts;
+    for (const LegendEntry& e : legendEntries())
+        texts << e.text;
+    return texts;
 }
 
 void ImageView2D::setShowHiddenCurves(bool show) {
@@ -366,6 +467,7 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
     std::vector<LegendEntry> entries;
     if (!graph_) {
         appendComparisonLegend(entries);
+        appendGroundTruthLegend(entries);
         return entries;
     }
     // Only what is drawn: the legend explains the picture.
@@ -415,6 +517,7 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
         entries.push_back({LegendEntry::Glyph, style.color.toQColor(), style.glyph, label});
     }
     appendComparisonLegend(entries);
+    appendGroundTruthLegend(entries);
     return entries;
 }
 
@@ -515,6 +618,17 @@ void ImageView2D::paintLegend(QPainter& painter) const {
             painter.setPen(linePen(e.color, kComparisonHighlightWidth, Qt::SolidLine));
             painter.drawLine(left, right);
             break;
+        case LegendEntry::ThinLine:
+            painter.setPen(linePen(e.color, sceneColors::kGroundTruthLineWidth2D, Qt::SolidLine));
+            painter.drawLine(left, right);
+            break;
+        case LegendEntry::SmallRing: {
+            const double r = 0.5 * sceneColors::kGroundTruthCuspSize2D;
+            painter.setPen(linePen(e.color, 1.5, Qt::SolidLine));
+            painter.setBrush(Qt::NoBrush);
+            painter.drawEllipse(0.5 * (left + right), r, r);
+            break;
+        }
         case LegendEntry::Glyph:
             drawGlyph(painter, 0.5 * (left + right), e.glyph, e.color, kGlyphSize);
             break;
@@ -559,6 +673,8 @@ void ImageView2D::paintEvent(QPaintEvent*) {
 
     if (comparison_)
         paintComparison(painter, frame);
+    if (groundTruth_)
+        paintGroundTruth(painter, frame);
 
     painter.setPen(QPen(QColor(60, 60, 60), 1.0));
     painter.setBrush(Qt::NoBrush);
@@ -567,7 +683,7 @@ void ImageView2D::paintEvent(QPaintEvent*) {
         frame.adjusted(4, 2, -4, -2), Qt::AlignRight | Qt::AlignBottom,
         QStringLiteral("%1 × %2").arg(camera_->viewport.width).arg(camera_->viewport.height));
     paintHighlight(painter, frame);
-    if (graph_ || comparison_)
+    if (graph_ || comparison_ || groundTruth_)
         paintLegend(painter);
 }
 

@@ -8,12 +8,14 @@
 // chains solid, hidden ones (QI > 0 or unknown) dashed and optional, chains
 // hidden by topological simplification left out (or very faint, optional),
 // coloured by QI or by chain (ViewGraphStyle.h), with one glyph per node type
-// and a legend of what is drawn.
+// and a legend of what is drawn. On request, the dense ground truth of the
+// smooth contour is drawn over it (setGroundTruth).
 #include "Selection.h"
 #include "ViewGraphStyle.h"
 #include "camera/Camera.h"
 #include "export/CurveComparison.h"
 #include "pipeline/Snapshot.h"
+#include "reference/DenseGroundTruth.h"
 
 #include <QPainterPath>
 #include <QStringList>
@@ -85,6 +87,24 @@ public:
     // The comparison caption's text (empty without a comparison).
     QString comparisonCaption() const;
 
+    // The dense ground truth of the smooth contour for this view's camera
+    // (reference/DenseGroundTruth.h; the application computes it): every
+    // loop as a thin sceneColors::kGroundTruth line over the drawing,
+    // visible or not (the oracle knows no visibility), its cusps as small
+    // rings, and a legend entry with its counts and lattice. Kept, and
+    // projected again with each new camera, until cleared or replaced;
+    // clearScene() clears it.
+    void setGroundTruth(std::shared_ptr<const GroundTruth> truth, int imageCrossings);
+    void clearGroundTruth();
+    bool showsGroundTruth() const { return static_cast<bool>(groundTruth_); }
+    // Loops and cusp rings the next paint draws (0 without a ground truth).
+    int groundTruthLoopsDrawn() const { return groundTruthDrawn_.loops; }
+    int groundTruthCuspsDrawn() const { return groundTruthDrawn_.cusps; }
+    // "ground truth: L loops, C cusps, X crossings (N = n)", empty without.
+    QString groundTruthLegend() const;
+    // The texts of the legend's entries, top to bottom.
+    QStringList legendTexts() const;
+
     // Linked selection (Selection.h). What a click at `position` (widget
     // coordinates) hits: the mesh vertex of the nearest drawn view-graph node
     // within kPickPixels (nodes with a vertex: cusps, boundary folds), else
@@ -132,7 +152,7 @@ private:
         int cuspFolds = 0; // curtain folds at the smooth surface's cusps (ViewNode::smoothCusp)
     };
     struct LegendEntry {
-        enum Kind { Line, DashedLine, WideLine, Glyph } kind;
+        enum Kind { Line, DashedLine, WideLine, ThinLine, SmallRing, Glyph } kind;
         QColor color;
         NodeGlyph glyph = NodeGlyph::Square;
         QString text;
@@ -156,6 +176,18 @@ private:
     void paintComparison(QPainter& painter, const QRectF& frame) const;
     void appendComparisonLegend(std::vector<LegendEntry>& entries) const;
     std::optional<Comparison> comparison_;
+
+    // Projects the ground truth's loops and cusps with the camera.
+    void rebuildGroundTruth();
+    void paintGroundTruth(QPainter& painter, const QRectF& frame) const;
+    void appendGroundTruthLegend(std::vector<LegendEntry>& entries) const;
+    std::shared_ptr<const GroundTruth> groundTruth_;
+    int groundTruthCrossings_ = 0;
+    QPainterPath groundTruthPath_;       // in image pixels
+    std::vector<Vec2> groundTruthCusps_; // image pixels of the cusps in front of the eye
+    struct GroundTruthCounts {
+        int loops = 0, cusps = 0;
+    } groundTruthDrawn_;
 
     std::optional<Camera> camera_;
     std::vector<ProjectedCurve> paths_;

@@ -19,9 +19,10 @@ namespace {
 struct Palette {
     SceneColor frontFace{}, backFace{}, edgeOnFace{}, unclassifiedFace{}, contour3D{}, contour2D{},
         boundary{}, intersection{}, frustum{}, controlCage{}, undefinedVbo{}, inconsistentOutline{},
-        radialTint{}, standardRadialTint{}, comparisonOther{}, comparisonOnlyHere{}, radialEdge{},
-        contourVertex{}, cuspVertex{}, selection{}, divergingNegative{}, divergingPositive{},
-        nanValue{}, contourOverField{}, scalarBarText{}, backgroundTop{}, backgroundBottom{};
+        radialTint{}, standardRadialTint{}, comparisonOther{}, comparisonOnlyHere{}, groundTruth{},
+        radialEdge{}, contourVertex{}, cuspVertex{}, selection{}, divergingNegative{},
+        divergingPositive{}, nanValue{}, contourOverField{}, scalarBarText{}, backgroundTop{},
+        backgroundBottom{};
 };
 Palette palette;
 
@@ -51,6 +52,7 @@ const std::pair<const char*, SceneColor*> kSceneKeys[] = {
     {"standard-radial-tint", &palette.standardRadialTint},
     {"comparison-other", &palette.comparisonOther},
     {"comparison-only-here", &palette.comparisonOnlyHere},
+    {"ground-truth", &palette.groundTruth},
     {"radial-edge", &palette.radialEdge},
     {"contour-vertex", &palette.contourVertex},
     {"cusp-vertex", &palette.cuspVertex},
@@ -162,6 +164,7 @@ const SceneColor& kRadialTint = palette.radialTint;
 const SceneColor& kStandardRadialTint = palette.standardRadialTint;
 const SceneColor& kComparisonOther = palette.comparisonOther;
 const SceneColor& kComparisonOnlyHere = palette.comparisonOnlyHere;
+const SceneColor& kGroundTruth = palette.groundTruth;
 const SceneColor& kRadialEdge = palette.radialEdge;
 const SceneColor& kContourVertex = palette.contourVertex;
 const SceneColor& kCuspVertex = palette.cuspVertex;

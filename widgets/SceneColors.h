@@ -49,6 +49,16 @@ inline constexpr double kRadialTintOpacity = 0.6;
 extern const SceneColor& kComparisonOther;
 extern const SceneColor& kComparisonOnlyHere;
 inline constexpr double kComparisonHighlightOpacity = 0.45;
+// The dense ground truth of the smooth contour (reference/DenseGroundTruth.h),
+// when its toggle is on: thin teal lines in both views (hue ~172°, away from
+// the black, purple and cyan of the drawing and from the facing colours),
+// its cusps as teal rings in 2D (around the method's cusp glyph where they
+// agree) and small dots in 3D.
+extern const SceneColor& kGroundTruth;
+inline constexpr double kGroundTruthLineWidth2D = 1.25; // pixels
+inline constexpr double kGroundTruthLineWidth3D = 2.0;  // pixels
+inline constexpr double kGroundTruthCuspSize2D = 13.0;  // pixels, around a 9 px fold glyph
+inline constexpr double kGroundTruthCuspSize3D = 8.0;   // pixels
 extern const SceneColor& kRadialEdge;
 extern const SceneColor& kContourVertex;
 extern const SceneColor& kCuspVertex;

@@ -41,9 +41,9 @@ SceneView3D::SceneView3D(QWidget* parent) : VtkOpenGLWidget(parent) {
     overlayRenderer_->InteractiveOff();
     overlayRenderer_->SetActiveCamera(ren->GetActiveCamera());
     renderWindow()->AddRenderer(overlayRenderer_);
-    for (const SceneLayer* layer :
-         std::initializer_list<const SceneLayer*>{&coloring_, &motionCopy_, &curves_, &overlays_,
-                                                  &viewGraph_, &highlight_, &cage_, &frustum_})
+    for (const SceneLayer* layer : std::initializer_list<const SceneLayer*>{
+             &coloring_, &motionCopy_, &curves_, &overlays_, &viewGraph_, &groundTruth_,
+             &highlight_, &cage_, &frustum_})
         layer->addToRenderers(ren, overlayRenderer_);
 
     lodPool_.setMaxThreadCount(1);
@@ -106,6 +106,7 @@ void SceneView3D::setSnapshot(const Snapshot& snapshot) {
     curves_.update(snapshot);
     cage_.update(snapshot);
     viewGraph_.update(snapshot);
+    groundTruth_.update(snapshot);
     syncContrast();
     highlight_.update(snapshot);
     frustum_.update(snapshot);
@@ -133,9 +134,9 @@ void SceneView3D::clearScene() {
     mesh_.reset();
     snapshot_ = Snapshot();
     lodTimer_->stop();
-    for (SceneLayer* layer :
-         std::initializer_list<SceneLayer*>{&coloring_, &motionCopy_, &curves_, &overlays_,
-                                            &viewGraph_, &highlight_, &cage_, &frustum_})
+    for (SceneLayer* layer : std::initializer_list<SceneLayer*>{
+             &coloring_, &motionCopy_, &curves_, &overlays_, &viewGraph_, &groundTruth_,
+             &highlight_, &cage_, &frustum_})
         layer->update(snapshot_);
     motionCopy_.clearCopy();
     ++colourStamp_;
@@ -252,6 +253,13 @@ vtkPolyData* SceneView3D::viewGraphChainData(ChainState state) const {
 
 vtkPolyData* SceneView3D::viewGraphNodeData(bool hidden) const {
     return viewGraph_.nodeData(hidden);
+}
+
+// ---------------------------------------------------------- ground truth
+
+void SceneView3D::setGroundTruth(std::shared_ptr<const GroundTruth> truth) {
+    groundTruth_.setGroundTruth(std::move(truth));
+    requestRender();
 }
 
 // ---------------------------------------------------------- control cage

@@ -7,7 +7,8 @@
 // (ViewGraphLayer), the consistent method's overlays (ConsistentOverlayLayer),
 // the control cage (CageLayer), the linked selection (HighlightLayer), the
 // analysis camera's frustum when this view's own camera differs from it
-// (FrustumLayer) and, while the camera moves, a decimated copy of a large
+// (FrustumLayer), on request the dense ground truth of the smooth contour
+// (GroundTruthLayer) and, while the camera moves, a decimated copy of a large
 // mesh (MotionCopyLayer). The view owns the renderers, the camera, picking
 // and the motion drawing; the API below is what the window and tests call.
 #include "DivergingColorMap.h"
@@ -23,6 +24,7 @@
 #include "scene/ConsistentOverlayLayer.h"
 #include "scene/CurveLayer.h"
 #include "scene/FrustumLayer.h"
+#include "scene/GroundTruthLayer.h"
 #include "scene/HighlightLayer.h"
 #include "scene/MeshColoringLayer.h"
 #include "scene/MotionCopyLayer.h"
@@ -127,6 +129,18 @@ public:
     long long viewGraphNodesShown() const;
     vtkPolyData* viewGraphChainData(ChainState state) const;
     vtkPolyData* viewGraphNodeData(bool hidden = false) const;
+
+    // The dense ground truth of the smooth contour (the application computes
+    // it for the analysis camera), drawn on the surface while the snapshot
+    // has a mesh; kept across snapshots until cleared or replaced.
+    void setGroundTruth(std::shared_ptr<const GroundTruth> truth);
+    void clearGroundTruth() { setGroundTruth(nullptr); }
+    bool hasGroundTruth() const { return groundTruth_.hasGroundTruth(); }
+    // Loops and cusps drawn now, and their VTK data (null without one).
+    long long groundTruthLoopsShown() const { return groundTruth_.loopsShown(); }
+    long long groundTruthCuspsShown() const { return groundTruth_.cuspsShown(); }
+    vtkPolyData* groundTruthLoopData() const { return groundTruth_.loopData(); }
+    vtkPolyData* groundTruthCuspData() const { return groundTruth_.cuspData(); }
 
     // The camera the method runs with; drawn as a frustum when it differs
     // from this view's camera.
@@ -241,6 +255,7 @@ private:
     CurveLayer curves_;
     ConsistentOverlayLayer overlays_;
     ViewGraphLayer viewGraph_;
+    GroundTruthLayer groundTruth_;
     HighlightLayer highlight_;
     CageLayer cage_;
     FrustumLayer frustum_;

@@ -47,6 +47,48 @@ vtkSmartPointer<vtkCellArray> makeCells(const std::vector<vtkIdType>& offsets,
     return cells;
 }
 
+// Polylines over points of their own, as flat cells.
+struct PolylineCells {
+    std::vector<Vec3> positions;
+    std::vector<vtkIdType> offsets{0};
+    std::vector<vtkIdType> connectivity;
+
+    // One polyline through `points` (each placed by `position`); a closed
+    // one repeats its first point.
+    template <class Points, class Position>
+    void add(const Points& points, bool closed, Position position) {
+        const vtkIdType first = static_cast<vtkIdType>(positions.size());
+        for (const auto& p : points) {
+            connectivity.push_back(static_cast<vtkIdType>(positions.size()));
+            positions.push_back(position(p));
+        }
+        if (closed)
+            connectivity.push_back(first);
+        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+    }
+
+    vtkSmartPointer<vtkPolyData> polyData() const {
+        auto poly = vtkSmartPointer<vtkPolyData>::New();
+        poly->SetPoints(makePoints(positions));
+        poly->SetLines(makeCells(offsets, connectivity));
+        return poly;
+    }
+};
+
+// One vertex cell per position, in order.
+vtkSmartPointer<vtkPolyData> verticesToPolyData(std::span<const Vec3> positions) {
+    std::vector<vtkIdType> offsets(positions.size() + 1);
+    std::vector<vtkIdType> connectivity(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        connectivity[i] = static_cast<vtkIdType>(i);
+        offsets[i + 1] = static_cast<vtkIdType>(i + 1);
+    }
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(makePoints(positions));
+    poly->SetVerts(makeCells(offsets, connectivity));
+    return poly;
+}
+
 } // namespace
 
 vtkSmartPointer<vtkPolyData> meshToPolyData(const TriangleMesh& mesh) {
@@ -180,27 +222,16 @@ vtkSmartPointer<vtkDoubleArray> smoothSurfaceNormals(const Snapshot& snapshot) {
 }
 
 vtkSmartPointer<vtkPolyData> curvesToPolyData(const std::vector<Polyline>& curves) {
-    std::vector<Vec3> positions;
-    std::vector<vtkIdType> offsets{0};
-    std::vector<vtkIdType> connectivity;
+    PolylineCells cells;
     auto types = vtkSmartPointer<vtkIntArray>::New();
     types->SetName(kVtkCurveTypeArray);
     for (const Polyline& curve : curves) {
         if (curve.points.size() < 2)
             continue;
-        const vtkIdType first = static_cast<vtkIdType>(positions.size());
-        for (const CurvePoint& p : curve.points) {
-            connectivity.push_back(static_cast<vtkIdType>(positions.size()));
-            positions.push_back(p.position);
-        }
-        if (curve.closed)
-            connectivity.push_back(first);
-        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+        cells.add(curve.points, curve.closed, [](const CurvePoint& p) { return p.position; });
         types->InsertNextValue(static_cast<int>(curve.type));
     }
-    auto poly = vtkSmartPointer<vtkPolyData>::New();
-    poly->SetPoints(makePoints(positions));
-    poly->SetLines(makeCells(offsets, connectivity));
+    auto poly = cells.polyData();
     poly->GetCellData()->AddArray(types);
     poly->GetCellData()->SetActiveScalars(kVtkCurveTypeArray);
     return poly;
@@ -230,9 +261,7 @@ vtkSmartPointer<vtkPolyData> cageToPolyData(const PolygonMesh& cage) {
 }
 
 vtkSmartPointer<vtkPolyData> viewChainsToPolyData(const ViewGraph& graph, ChainState state) {
-    std::vector<Vec3> positions;
-    std::vector<vtkIdType> offsets{0};
-    std::vector<vtkIdType> connectivity;
+    PolylineCells cells;
     auto indices = vtkSmartPointer<vtkIntArray>::New();
     indices->SetName(kVtkChainIndexArray);
     auto qis = vtkSmartPointer<vtkIntArray>::New();
@@ -241,39 +270,43 @@ vtkSmartPointer<vtkPolyData> viewChainsToPolyData(const ViewGraph& graph, ChainS
         const ViewChain& chain = graph.chains[c];
         if (chain.points.size() < 2 || chainState(chain) != state)
             continue;
-        for (const Vec3& p : chain.points) {
-            connectivity.push_back(static_cast<vtkIdType>(positions.size()));
-            positions.push_back(p);
-        }
-        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
+        // A closed chain already repeats its first point.
+        cells.add(chain.points, false, [](const Vec3& p) { return p; });
         indices->InsertNextValue(static_cast<int>(c));
         qis->InsertNextValue(chain.qi);
     }
-    auto poly = vtkSmartPointer<vtkPolyData>::New();
-    poly->SetPoints(makePoints(positions));
-    poly->SetLines(makeCells(offsets, connectivity));
+    auto poly = cells.polyData();
     poly->GetCellData()->AddArray(indices);
     poly->GetCellData()->AddArray(qis);
     return poly;
 }
 
+vtkSmartPointer<vtkPolyData> groundTruthLoopsToPolyData(const GroundTruth& truth) {
+    PolylineCells cells;
+    for (const GroundTruthLoop& loop : truth.loops)
+        if (loop.points.size() >= 2)
+            cells.add(loop.points, loop.closed, [](const Vec3& p) { return p; });
+    return cells.polyData();
+}
+
+vtkSmartPointer<vtkPolyData> groundTruthCuspsToPolyData(const GroundTruth& truth) {
+    std::vector<Vec3> positions;
+    for (const GroundTruthCusp& cusp : truth.cusps)
+        positions.push_back(cusp.position);
+    return verticesToPolyData(positions);
+}
+
 vtkSmartPointer<vtkPolyData> viewNodesToPolyData(const ViewGraph& graph, bool hidden) {
     std::vector<Vec3> positions;
-    std::vector<vtkIdType> offsets{0};
-    std::vector<vtkIdType> connectivity;
     auto types = vtkSmartPointer<vtkIntArray>::New();
     types->SetName(kVtkNodeTypeArray);
     for (Index n = 0; n < static_cast<Index>(graph.nodes.size()); ++n) {
         if (nodeIsHidden(graph, n) != hidden)
             continue;
-        connectivity.push_back(static_cast<vtkIdType>(positions.size()));
-        offsets.push_back(static_cast<vtkIdType>(connectivity.size()));
         positions.push_back(graph.nodes[n].position);
         types->InsertNextValue(static_cast<int>(graph.nodes[n].type));
     }
-    auto poly = vtkSmartPointer<vtkPolyData>::New();
-    poly->SetPoints(makePoints(positions));
-    poly->SetVerts(makeCells(offsets, connectivity));
+    auto poly = verticesToPolyData(positions);
     poly->GetPointData()->AddArray(types);
     return poly;
 }

@@ -4,6 +4,7 @@
 #include "ViewGraphStyle.h"
 #include "camera/Camera.h"
 #include "pipeline/Snapshot.h"
+#include "reference/DenseGroundTruth.h"
 
 #include <string>
 #include <vector>
@@ -80,6 +81,13 @@ vtkSmartPointer<vtkPolyData> viewChainsToPolyData(const ViewGraph& graph, ChainS
 // otherwise.
 inline constexpr const char* kVtkNodeTypeArray = "node_type";
 vtkSmartPointer<vtkPolyData> viewNodesToPolyData(const ViewGraph& graph, bool hidden);
+
+// The dense ground truth of the smooth contour (reference/DenseGroundTruth.h):
+// its loops as polylines through their points (a closed loop repeats its
+// first point), loops of fewer than two points left out; its cusps as one
+// vertex cell each.
+vtkSmartPointer<vtkPolyData> groundTruthLoopsToPolyData(const GroundTruth& truth);
+vtkSmartPointer<vtkPolyData> groundTruthCuspsToPolyData(const GroundTruth& truth);
 
 // Overlays of the consistent method (Bénard 2014, contours/consistent/). Each
 // is null when the snapshot lacks the fields it needs or their sizes do not

@@ -2,6 +2,7 @@
 
 #include "AboutDialog.h"
 #include "FieldLabels.h"
+#include "GroundTruthComputation.h"
 #include "ImageView2D.h"
 #include "Inspector.h"
 #include "MethodComparison.h"
@@ -15,6 +16,7 @@
 #include "SnapshotExport.h"
 #include "ViewGraphStyle.h"
 #include "contours/Methods.h"
+#include "contours/common/SurfacePhase.h"
 #include "export/CurveComparison.h"
 #include "mesh/MeshError.h"
 #include "mesh/Orientation.h"
@@ -155,6 +157,7 @@ MainWindow::MainWindow(QWidget* parent)
     connect(colorSelector_, &QComboBox::currentIndexChanged, this, &MainWindow::onColorSelected);
     connect(colorSelector_, &QComboBox::activated, this, &MainWindow::onColorSelected);
     connect(comparison_, &MethodComparison::changed, this, &MainWindow::updateComparison);
+    connect(groundTruth_, &GroundTruthComputation::changed, this, &MainWindow::showGroundTruth);
     sceneView_->setColorField(defaults_.colourBy.toStdString());
     updateColorSelector();
     updateOverlayActions();
@@ -433,6 +436,22 @@ void MainWindow::createOverlayActions(QMenu* viewMenu) {
         menu->addAction(action);
     }
     createViewGraphActions(menu);
+    createGroundTruthAction(menu);
+}
+
+void MainWindow::createGroundTruthAction(QMenu* overlayMenu) {
+    groundTruth_ = new GroundTruthComputation(this);
+    groundTruthSeparator_ = overlayBar_->addSeparator();
+    overlayMenu->addSeparator();
+    groundTruthAction_ =
+        new QAction(resourceIcon(QStringLiteral("ground-truth")), tr("Ground-truth contour"), this);
+    groundTruthAction_->setObjectName(QStringLiteral("groundTruthContour"));
+    groundTruthAction_->setCheckable(true);
+    groundTruthAction_->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_G));
+    connect(groundTruthAction_, &QAction::toggled, this, &MainWindow::updateGroundTruthRequest);
+    groundTruthAction_->setChecked(defaults_.toggle("overlay.ground-truth", false));
+    overlayBar_->addAction(groundTruthAction_);
+    overlayMenu->addAction(groundTruthAction_);
 }
 
 void MainWindow::createViewGraphActions(QMenu* overlayMenu) {
@@ -504,6 +523,7 @@ void MainWindow::createDisplayDock() {
         toggles->addAction(action);
     for (QAction* action : viewGraphActions_)
         toggles->addAction(action);
+    toggles->addAction(groundTruthAction_);
     toggles->addAction(cageAction_);
     layout->addWidget(toggles);
     for (QLabel* legend : {colorLegend_, viewGraphLegend_}) {
@@ -563,6 +583,12 @@ void MainWindow::updateOverlayActions() {
     viewGraphSeparator_->setVisible(graph);
     viewGraphLegend_->setVisible(graph);
     any |= graph;
+    // The ground-truth toggle is there for any mesh (disabled without a
+    // smooth surface, saying why).
+    const bool mesh = run_->input().has_value();
+    groundTruthAction_->setVisible(mesh);
+    groundTruthSeparator_->setVisible(mesh && any);
+    any |= mesh;
     updateViewGraphLegend();
     // The bar only takes room when it has something to offer.
     overlayBar_->setVisible(any);
@@ -724,6 +750,7 @@ void MainWindow::rebuildRunner(int completed) {
     if (restoring_)
         return; // restoreRun() rebuilds once, at the end
     comparison_->setPrimary(run_->input(), run_->camera(), methodPanel_->parameters());
+    updateGroundTruthRequest();
     stepper_->setMethod(methodPanel_->method());
     run_->restart(completed);
     updateActions();
@@ -918,6 +945,83 @@ void MainWindow::updateComparison() {
     imageView_->setComparison(method ? QString::fromStdString(method->name) : tr("this method"),
                               other, there,
                               compareCurves(here, there, defaults_.comparisonTolerancePixels));
+}
+
+void MainWindow::updateGroundTruthRequest() {
+    // What the toggle can compute for: the smooth surface the method's
+    // `surface` parameter selects for the open cage, seen by the analysis
+    // camera.
+    std::optional<GroundTruthRequest> request;
+    QString unavailable;
+    const Method* method = methodPanel_->method();
+    const ParameterSet parameters = methodPanel_->parameters();
+    const std::optional<Snapshot>& input = run_->input();
+    if (!method || !input || !input->cage || !run_->camera()) {
+        unavailable = tr("Open a mesh first");
+    } else if (!parameters.has("surface")) {
+        unavailable = tr("%1 has no smooth surface to compare with")
+                          .arg(QString::fromStdString(method->label));
+    } else {
+        try {
+            if (const std::optional<SurfaceKind> kind =
+                    selectedSurfaceKind(parameters, *input->cage))
+                request = GroundTruthRequest{input->cage, *kind, *run_->camera()};
+            else
+                unavailable = tr("The ground truth is the contour of a smooth surface, and %1 "
+                                 "runs on the triangulated cage (surface = none): choose a smooth "
+                                 "surface in the method's parameters to compare with it")
+                                  .arg(QString::fromStdString(method->label));
+        } catch (const std::exception& e) {
+            unavailable = QString::fromStdString(e.what());
+        }
+    }
+    groundTruthAction_->setEnabled(request.has_value());
+    const QString tip =
+        request ? tr("Compute the dense ground truth of the smooth contour for the analysis "
+                     "camera in the background (g = 0 on an N × N lattice per domain face of the "
+                     "smooth surface, sharing no code with the methods; cusps where the radial "
+                     "curvature changes sign) and draw it over both views: thin teal loops, "
+                     "visible or not, cusps as small rings (Ctrl+Shift+G)")
+                : unavailable;
+    groundTruthAction_->setToolTip(tip);
+    groundTruthAction_->setStatusTip(tip);
+    groundTruth_->setRequest(groundTruthAction_->isChecked() ? request : std::nullopt);
+    updateOverlayActions(); // the toggle shows once a mesh is open
+}
+
+void MainWindow::showGroundTruth() {
+    const std::optional<GroundTruthResult>& result = groundTruth_->result();
+    const std::optional<GroundTruthRequest>& request = groundTruth_->request();
+    // Drawn only for the camera the views project with.
+    if (!result || !request || request->camera != run_->camera()) {
+        imageView_->clearGroundTruth();
+        sceneView_->clearGroundTruth();
+        if (groundTruth_->isRunning())
+            statusBar()->showMessage(tr("Computing the ground truth of the smooth contour…"));
+        else if (!groundTruth_->error().isEmpty())
+            statusBar()->showMessage(tr("Ground truth failed: %1").arg(groundTruth_->error()));
+        else if (statusBar()->currentMessage().startsWith(tr("Computing the ground truth")))
+            statusBar()->clearMessage();
+        return;
+    }
+    imageView_->setGroundTruth(result->truth, result->imageCrossings);
+    sceneView_->setGroundTruth(result->truth);
+    const QString sampling =
+        result->samplingReused
+            ? tr("lattice reused")
+            : tr("lattice sampled in %1 s").arg(result->samplingSeconds, 0, 'f', 2);
+    statusBar()->showMessage(
+        tr("Ground truth (N = %1, %2 M lattice points on %3 domain faces): %4 loops, %5 cusps, "
+           "%6 crossings in %7 s (%8, contour %9 s)")
+            .arg(result->samples)
+            .arg(static_cast<double>(result->latticePoints) / 1e6, 0, 'f', 1)
+            .arg(result->domainFaces)
+            .arg(result->truth->loops.size())
+            .arg(result->truth->cusps.size())
+            .arg(result->imageCrossings)
+            .arg(result->totalSeconds, 0, 'f', 2)
+            .arg(sampling)
+            .arg(result->contourSeconds + result->crossingSeconds, 0, 'f', 2));
 }
 
 bool MainWindow::setColorField(const QString& field) {

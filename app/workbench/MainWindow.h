@@ -9,8 +9,8 @@
 // a "Display" tool bar with the 3D view's "Colour by" selector and its
 // legend, an "Overlays" tool bar with the 3D view's overlay toggles (shown
 // only for the overlays the snapshot has fields for) and the view graph
-// toggles of both views (shown when the snapshot has a view graph), a status
-// bar. The small public API
+// toggles of both views (shown when the snapshot has a view graph) and the
+// ground-truth toggle, a status bar. The small public API
 // below is what the menus call, and what tests drive.
 #include "RunController.h"
 #include "SceneView3D.h"
@@ -36,6 +36,7 @@ class QSplitter;
 
 namespace contour {
 
+class GroundTruthComputation;
 class ImageView2D;
 class Inspector;
 class MethodComparison;
@@ -145,6 +146,17 @@ public:
     // The 3D view's view graph legend (QI colours, node dot colours).
     QLabel* viewGraphLegend() const { return viewGraphLegend_; }
 
+    // View › Overlays › Ground-truth contour (also on the Overlays tool bar):
+    // while checked, the dense ground truth of the smooth contour
+    // (reference/DenseGroundTruth.h) for the analysis camera is computed in
+    // the background (groundTruth()) and drawn in both views, with a legend
+    // entry in the 2D view and its time in the status bar; it is computed
+    // again when the mesh, the smooth surface or the analysis camera changes.
+    // Unchecked, it is cleared. Disabled, with a tool tip saying why, while
+    // the method has no smooth surface (surface = none).
+    QAction* groundTruthAction() const { return groundTruthAction_; }
+    GroundTruthComputation* groundTruth() const { return groundTruth_; }
+
     // View › Control cage: the cage as a wireframe in the 3D view.
     QAction* controlCageAction() const { return cageAction_; }
     // View › Both views / 3D view only / 2D view only: either view can take
@@ -248,8 +260,15 @@ private:
     // and the other method's, shown in the 2D view.
     void createCompareSelector(QToolBar* toolBar);
     void updateComparison();
+    // The ground-truth toggle and what it computes for.
+    void createGroundTruthAction(QMenu* overlayMenu);
+    void updateGroundTruthRequest();
+    void showGroundTruth();
 
     MethodComparison* comparison_ = nullptr;
+    GroundTruthComputation* groundTruth_ = nullptr;
+    QAction* groundTruthAction_ = nullptr;
+    QAction* groundTruthSeparator_ = nullptr;
     QAction* cageAction_ = nullptr;
     std::array<QAction*, 3> layoutActions_{};
     QComboBox* compareSelector_ = nullptr;

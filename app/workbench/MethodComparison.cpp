@@ -1,10 +1,8 @@
 #include "MethodComparison.h"
 
+#include "ProcessEventsWhile.h"
 #include "contours/Methods.h"
 
-#include <QCoreApplication>
-#include <QElapsedTimer>
-#include <QEventLoop>
 #include <QtConcurrent/QtConcurrent>
 
 namespace contour {
@@ -105,11 +103,7 @@ void MethodComparison::onFinished() {
 }
 
 bool MethodComparison::waitForResult(int timeoutMs) {
-    QElapsedTimer timer;
-    timer.start();
-    while (running_ && timer.elapsed() < timeoutMs)
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
-    return !running_;
+    return processEventsWhile([this] { return running_; }, timeoutMs);
 }
 
 } // namespace contour

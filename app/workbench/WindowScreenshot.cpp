@@ -1,8 +1,10 @@
 #include "WindowScreenshot.h"
 
+#include "GroundTruthComputation.h"
 #include "MainWindow.h"
 #include "contours/Methods.h"
 
+#include <QAction>
 #include <QColor>
 #include <QElapsedTimer>
 #include <QEventLoop>
@@ -81,6 +83,20 @@ QString takeWindowScreenshot(MainWindow& window, const ScreenshotRequest& reques
         return window.lastError();
     if (!window.runner() || !window.runner()->atEnd())
         return QStringLiteral("%1: the method did not run to its end").arg(request.input);
+    if (request.groundTruth) {
+        QAction* toggle = window.groundTruthAction();
+        if (!toggle->isEnabled())
+            return QStringLiteral("--ground-truth: %1").arg(toggle->toolTip());
+        toggle->setChecked(true);
+        GroundTruthComputation* truth = window.groundTruth();
+        if (!truth->waitForResult(remaining()))
+            return QStringLiteral("%1: the ground truth did not finish within %2 s")
+                .arg(request.input)
+                .arg(request.timeoutMs / 1000);
+        if (!truth->error().isEmpty())
+            return QStringLiteral("%1: the ground truth failed: %2")
+                .arg(request.input, truth->error());
+    }
     settle(300); // the views repaint after the last snapshot
     const QImage image = window.grab().toImage();
     if (const QString problem = screenshotProblem(image); !problem.isEmpty())

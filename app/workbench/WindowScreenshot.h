@@ -1,8 +1,9 @@
 #pragma once
 // contour-workbench --screenshot: opens a mesh or a session in the window,
-// runs the method to its last phase, waits until no phase runs and the views
-// have drawn, grabs the whole window (QWidget::grab includes the VTK views'
-// QOpenGLWidget) and writes it as a PNG. Used for the README's picture.
+// runs the method to its last phase (and, when asked, the ground truth of the
+// smooth contour), waits until no phase runs and the views have drawn, grabs the whole window
+// (QWidget::grab includes the VTK views' QOpenGLWidget) and writes it as a PNG. Used for the
+// README's picture.
 #include <QImage>
 #include <QString>
 
@@ -14,6 +15,8 @@ struct ScreenshotRequest {
     QString input;  // a mesh or a session file (MainWindow::openFile)
     QString method; // empty: the window's method (or the session's)
     QString output; // the PNG to write
+    // Turn on View › Overlays › Ground-truth contour and wait for it.
+    bool groundTruth = false;
     int timeoutMs = 600000;
 };
 

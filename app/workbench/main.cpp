@@ -8,6 +8,7 @@
 #include "WindowScreenshot.h"
 #include "contours/Methods.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QRegularExpression>
@@ -75,7 +76,12 @@ int main(int argc, char* argv[]) {
         QStringLiteral("The window's size, WIDTHxHEIGHT (default: the screen's, or for "
                        "--screenshot the default window size)."),
         QStringLiteral("WxH"));
-    parser.addOptions({methodOption, screenshotOption, sizeOption});
+    const QCommandLineOption groundTruthOption(
+        QStringLiteral("ground-truth"),
+        QStringLiteral("Turn on View > Overlays > Ground-truth contour: the dense ground truth "
+                       "of the smooth contour drawn over both views (the method needs a smooth "
+                       "surface). With --screenshot the picture waits for it."));
+    parser.addOptions({methodOption, screenshotOption, sizeOption, groundTruthOption});
     parser.process(app); // --help and --version exit here; unknown options too (code 1)
 
     const QStringList files = parser.positionalArguments();
@@ -109,7 +115,8 @@ int main(int argc, char* argv[]) {
             window.resize(size);
         window.show();
         int status = 1;
-        const contour::ScreenshotRequest request{file, method, parser.value(screenshotOption)};
+        contour::ScreenshotRequest request{file, method, parser.value(screenshotOption)};
+        request.groundTruth = parser.isSet(groundTruthOption);
         // Once the window is laid out, so the analysis camera gets the 3D
         // view's size as its viewport.
         QTimer::singleShot(0, &window, [&window, &status, request] {
@@ -138,6 +145,8 @@ int main(int argc, char* argv[]) {
         window.sessionController()->restoreWindowSettings();
     if (!method.isEmpty())
         window.setMethod(method);
+    if (parser.isSet(groundTruthOption))
+        window.groundTruthAction()->setChecked(true);
     window.show();
     if (!file.isEmpty()) {
         // A mesh or a saved session (by suffix). Once the window is laid out, so the analysis

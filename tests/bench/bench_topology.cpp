@@ -32,7 +32,7 @@
 // The summary has one row per mesh with ConTesse's published runtime for the
 // same model (../shared/bench/contesse-0927-stats.csv) beside ours.
 #include "BenchSupport.h"
-#include "DenseGroundTruth.h"
+#include "reference/DenseGroundTruth.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
@@ -59,7 +59,6 @@
 
 using namespace contour;
 using namespace contour::bench;
-using namespace contour::testing;
 
 namespace {
 

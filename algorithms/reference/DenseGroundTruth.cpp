@@ -1,4 +1,4 @@
-#include "DenseGroundTruth.h"
+#include "reference/DenseGroundTruth.h"
 
 #include "camera/Facing.h"
 #include "contours/consistent/mesh/DomainCharts.h"
@@ -16,7 +16,7 @@
 #include <tbb/parallel_for.h>
 #include <utility>
 
-namespace contour::testing {
+namespace contour {
 
 namespace {
 
@@ -690,4 +690,4 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
     return r;
 }
 
-} // namespace contour::testing
+} // namespace contour

@@ -32,7 +32,7 @@
 #include <memory>
 #include <vector>
 
-namespace contour::testing {
+namespace contour {
 
 struct GroundTruthOptions {
     int samples = 64;    // lattice steps N per domain face side
@@ -172,4 +172,4 @@ TopologyComparison compareTopology(const GroundTruth& truth, const Snapshot& sna
                                    std::shared_ptr<const SmoothSurface> surface = nullptr,
                                    const Camera* camera = nullptr, double tolerancePixels = 1.0);
 
-} // namespace contour::testing
+} // namespace contour
