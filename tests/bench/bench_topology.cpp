@@ -7,7 +7,7 @@
 //                  [--out summary.csv] [--per-view views.csv] [--threads N]
 //
 // Per view, the consistent method runs to the end and its final view graph
-// is compared with tests/DenseGroundTruth (the g = 0 set of the same smooth
+// is compared with reference/DenseGroundTruth (the g = 0 set of the same smooth
 // surface sampled on a dense lattice, sharing no contour code):
 //   loops       closed and open contour loops, matched by domain faces
 //   cusps       the method's cusp vertices ("cusps" counter) vs the oracle's
@@ -32,13 +32,13 @@
 // The summary has one row per mesh with ConTesse's published runtime for the
 // same model (../shared/bench/contesse-0927-stats.csv) beside ours.
 #include "BenchSupport.h"
-#include "reference/DenseGroundTruth.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
 #include "mesh/ProceduralShapes.h"
 #include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "pipeline/Runner.h"
+#include "reference/DenseGroundTruth.h"
 #include "surface/SmoothSurfaceFactory.h"
 
 #include <CLI/CLI.hpp>
