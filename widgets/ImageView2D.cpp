@@ -521,13 +521,6 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
     return entries;
 }
 
-QStringList ImageView2D::legendTexts() const {
-    QStringList texts;
-    for (const LegendEntry& e : legendEntries())
-        texts << e.text;
-    return texts;
-}
-
 void ImageView2D::appendComparisonLegend(std::vector<LegendEntry>& entries) const {
     if (!comparison_)
         return;

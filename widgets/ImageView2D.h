@@ -63,8 +63,6 @@ public:
     int hiddenChainsDrawn() const { return drawn_.hidden; }
     int simplifiedChainsDrawn() const { return drawn_.simplified; }
     int nodeGlyphsDrawn() const { return drawn_.nodes; }
-    // The legend's lines as drawn.
-    QStringList legendTexts() const;
     int nodeGlyphsDrawn(ViewNodeType type) const {
         return drawn_.nodesByType[static_cast<size_t>(type)];
     }
