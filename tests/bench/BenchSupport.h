@@ -2,12 +2,18 @@
 // What every benchmark prints about the machine and the process: the load
 // average (figures taken on a busy machine say so), a /proc/self/status
 // field (resident memory), and where a named model of ../shared/meshes is.
+#include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshReader.h"
+#include "pipeline/Method.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -138,6 +144,41 @@ inline std::optional<std::string> matchPublished(const std::map<std::string, dou
     if (candidates.size() == 1)
         return candidates.front();
     return std::nullopt;
+}
+
+// The method's defaults with every --set PARAM=VALUE applied; throws on an
+// unknown parameter or a value its type refuses.
+inline ParameterSet parametersWithSettings(const Method& method,
+                                           const std::vector<std::string>& settings) {
+    ParameterSet parameters = ParameterSet::defaults(method.parameters);
+    for (const std::string& setting : settings) {
+        const size_t eq = setting.find('=');
+        const std::string name = setting.substr(0, eq);
+        const auto spec = std::find_if(method.parameters.begin(), method.parameters.end(),
+                                       [&](const ParameterSpec& p) { return p.name == name; });
+        if (eq == std::string::npos || spec == method.parameters.end())
+            throw std::runtime_error("--set " + setting + ": no such parameter");
+        parameters.set(name, parseParameter(*spec, setting.substr(eq + 1)));
+    }
+    return parameters;
+}
+
+// A benchmark input: "shape:NAME[:RES]" a procedural shape (resolution 12
+// by default), otherwise the mesh file `dir`/NAME.{obj,off,ply}; null when
+// that file is absent.
+inline std::shared_ptr<const PolygonMesh> loadBenchInput(const std::string& name,
+                                                         const std::filesystem::path& dir) {
+    if (name.rfind("shape:", 0) == 0) {
+        const std::string spec = name.substr(6);
+        const size_t colon = spec.find(':');
+        const int resolution = colon == std::string::npos ? 12 : std::stoi(spec.substr(colon + 1));
+        return std::make_shared<const PolygonMesh>(
+            makeProceduralShape(spec.substr(0, colon), resolution));
+    }
+    const std::optional<std::filesystem::path> file = findMeshFile(dir, name);
+    if (!file)
+        return nullptr;
+    return std::make_shared<const PolygonMesh>(readMesh(file->string()));
 }
 
 } // namespace contour::bench

@@ -56,8 +56,6 @@
 #include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
-#include "mesh/ProceduralShapes.h"
-#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "pipeline/Runner.h"
 
@@ -94,7 +92,6 @@ const std::vector<std::string> kDefaultMeshes{"spot_control_mesh",   "bob_contro
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
 
 struct ViewResult {
     bool completed = false;
@@ -485,17 +482,9 @@ int main(int argc, char** argv) {
         const Method* method = findMethod("consistent");
         if (!method)
             throw std::runtime_error("the consistent method is not registered");
-        ParameterSet parameters = ParameterSet::defaults(method->parameters);
-        for (const std::string& setting : settings) {
-            const size_t eq = setting.find('=');
-            const std::string name = setting.substr(0, eq);
-            const auto spec = std::find_if(method->parameters.begin(), method->parameters.end(),
-                                           [&](const ParameterSpec& p) { return p.name == name; });
-            if (eq == std::string::npos || spec == method->parameters.end())
-                throw std::runtime_error("--set " + setting + ": no such parameter");
-            parameters.set(name, parseParameter(*spec, setting.substr(eq + 1)));
+        const ParameterSet parameters = parametersWithSettings(*method, settings);
+        for (const std::string& setting : settings)
             std::printf("bench_consistent: %s\n", setting.c_str());
-        }
         const std::map<std::string, double> published = readPublished(publishedPath);
         if (published.empty())
             std::printf("bench_consistent: no published statistics read from %s; the ConTesse "
@@ -531,22 +520,11 @@ int main(int argc, char** argv) {
         for (const std::string& shape : shapes)
             inputs.push_back("shape:" + shape);
         for (const std::string& name : inputs) {
-            std::shared_ptr<const PolygonMesh> cage;
-            if (name.rfind("shape:", 0) == 0) {
-                const std::string spec = name.substr(6);
-                const size_t colon = spec.find(':');
-                const int resolution =
-                    colon == std::string::npos ? 12 : std::stoi(spec.substr(colon + 1));
-                cage = std::make_shared<const PolygonMesh>(
-                    makeProceduralShape(spec.substr(0, colon), resolution));
-            } else {
-                const std::optional<std::filesystem::path> file = findMeshFile(meshesDir, name);
-                if (!file) {
-                    std::printf("\nskipping %s: no %s/%s.{obj,off,ply}\n", name.c_str(),
-                                meshesDir.c_str(), name.c_str());
-                    continue;
-                }
-                cage = std::make_shared<const PolygonMesh>(readMesh(file->string()));
+            const std::shared_ptr<const PolygonMesh> cage = loadBenchInput(name, meshesDir);
+            if (!cage) {
+                std::printf("\nskipping %s: no %s/%s.{obj,off,ply}\n", name.c_str(),
+                            meshesDir.c_str(), name.c_str());
+                continue;
             }
             MeshSummary m;
             try {

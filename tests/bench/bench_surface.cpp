@@ -11,8 +11,8 @@
 // visit them). Besides wall-clock rates, the one-thread rate per second of
 // process CPU time is printed: it stays meaningful when other processes
 // share the cores.
-#include "mesh/io/MeshReader.h"
 #include "mesh/ProceduralShapes.h"
+#include "mesh/io/MeshReader.h"
 #include "surface/SubdivisionSurface.h"
 
 #include <CLI/CLI.hpp>

@@ -34,8 +34,6 @@
 #include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
-#include "mesh/ProceduralShapes.h"
-#include "mesh/io/MeshReader.h"
 #include "pipeline/FieldNames.h"
 #include "pipeline/Runner.h"
 #include "reference/DenseGroundTruth.h"
@@ -320,16 +318,7 @@ int main(int argc, char** argv) {
         const Method* method = findMethod("consistent");
         if (!method)
             throw std::runtime_error("no consistent method");
-        ParameterSet parameters = ParameterSet::defaults(method->parameters);
-        for (const std::string& setting : sets) {
-            const size_t eq = setting.find('=');
-            const std::string name = setting.substr(0, eq);
-            const auto spec = std::find_if(method->parameters.begin(), method->parameters.end(),
-                                           [&](const ParameterSpec& p) { return p.name == name; });
-            if (eq == std::string::npos || spec == method->parameters.end())
-                throw std::runtime_error("--set " + setting + ": no such parameter");
-            parameters.set(name, parseParameter(*spec, setting.substr(eq + 1)));
-        }
+        const ParameterSet parameters = parametersWithSettings(*method, sets);
         if (all)
             for (const std::string& name : everyMesh(meshesDir))
                 if (std::find(meshes.begin(), meshes.end(), name) == meshes.end())
@@ -353,20 +342,9 @@ int main(int argc, char** argv) {
             MeshFigures m;
             m.name = name;
             try {
-                std::shared_ptr<const PolygonMesh> cage;
-                if (name.rfind("shape:", 0) == 0) {
-                    const std::string spec = name.substr(6);
-                    const size_t colon = spec.find(':');
-                    const int resolution =
-                        colon == std::string::npos ? 12 : std::stoi(spec.substr(colon + 1));
-                    cage = std::make_shared<const PolygonMesh>(
-                        makeProceduralShape(spec.substr(0, colon), resolution));
-                } else {
-                    const std::optional<std::filesystem::path> file = findMeshFile(meshesDir, name);
-                    if (!file)
-                        throw std::runtime_error("no file " + meshesDir + "/" + name + ".obj");
-                    cage = std::make_shared<const PolygonMesh>(readMesh(file->string()));
-                }
+                const std::shared_ptr<const PolygonMesh> cage = loadBenchInput(name, meshesDir);
+                if (!cage)
+                    throw std::runtime_error("no file " + meshesDir + "/" + name + ".obj");
                 const auto surface = cachedSmoothSurface(cage, automaticSurfaceKind(*cage)).surface;
                 const double faces = std::max(1, cage->faceCount());
                 m.samples = samples > 0
