@@ -932,59 +932,47 @@ private:
         }
         for (size_t i = 0; i < graph_.nodes.size(); ++i) {
             ViewNode& node = graph_.nodes[i];
-            if (node.smoothCusp && node.chains.size() == 2) {
-                // Which branch is occluded is a local overlap fact (tutorial
-                // §4.3 definition (b), app. C.2): the one-ring faces of the
-                // cusp vertex over each branch's first edge. It is not the
-                // sign of κr: on a torus the exterior branch of a cusp next
-                // to the hole is the deeper one (one sheet behind the
-                // interior branch). Where the one-ring covers both branches
-                // alike, the interior branch (κr > 0 with the outward-normal
-                // sign of SurfaceFields.h) is taken as the far one. The step
-                // is one sheet, as on a smooth surface.
-                const int o0 = node.localOccluders[0], o1 = node.localOccluders[1];
-                const double k0 = branchKappa[i][0], k1 = branchKappa[i][1];
-                int farSide;
-                if (o0 != o1) {
-                    farSide = o1 > o0 ? 1 : 0;
-                } else {
-                    ++stats_.cuspFoldsSidedByCurvature;
-                    farSide = k1 > k0 ? 1 : 0;
-                }
-                node.nearChains = {node.chains[1 - farSide], kInvalidIndex};
-                node.farChains = {kInvalidIndex, node.chains[farSide]};
-                // A loop with this one node (its other cusp was not found)
-                // cannot step into itself.
+            if (node.type != ViewNodeType::CurtainFold &&
+                node.type != ViewNodeType::BoundaryCurtainFold)
+                continue;
+            if (node.chains.size() != 2)
+                continue;
+            // Tutorial §4.7: the far chain is the one the vertex's one-ring
+            // occludes (app. C.2 local overlap test). Usually the far chain is
+            // the concave (interior) one, but a convex edge can be the
+            // occluded one too (the rays agree with the local counts, not
+            // with convexity, on grazing tori). At a cusp of the surface the
+            // same local fact decides, not the sign of κr: on a torus the
+            // exterior branch of a cusp next to the hole is the deeper one.
+            // Ties fall back to convexity (mesh folds) or to the interior
+            // branch, κr > 0 with the outward-normal sign of SurfaceFields.h
+            // (cusps).
+            const int o0 = node.localOccluders[0], o1 = node.localOccluders[1];
+            int farSide = o1 > o0 ? 1 : 0;
+            if (o0 == o1 && node.smoothCusp) {
+                ++stats_.cuspFoldsSidedByCurvature;
+                farSide = branchKappa[i][1] > branchKappa[i][0] ? 1 : 0;
+            } else if (o0 == o1 && node.type == ViewNodeType::CurtainFold) {
+                farSide = graph_.chains[node.chains[1]].concave ? 1 : 0;
+            }
+            const int nearSide = 1 - farSide;
+            node.nearChains = {node.chains[nearSide], kInvalidIndex};
+            node.farChains = {kInvalidIndex, node.chains[farSide]};
+            if (node.smoothCusp) {
+                // One sheet, as on a smooth surface; a loop with this one
+                // node (its other cusp was not found) cannot step into
+                // itself.
                 node.qiStep = node.chains[0] != node.chains[1] ? 1 : 0;
-                if (node.qiStep == 0)
-                    ++stats_.foldsWithoutStep;
+                stats_.foldsWithoutStep += node.qiStep == 0;
                 continue;
             }
-            if (node.type == ViewNodeType::CurtainFold ||
-                node.type == ViewNodeType::BoundaryCurtainFold) {
-                if (node.chains.size() != 2)
-                    continue;
-                // Tutorial §4.7: the far chain is the one the vertex's one-ring
-                // occludes (app. C.2 local overlap test), and the step is the
-                // number of one-ring faces over it. Usually the far chain is
-                // the concave (interior) one, but a convex edge can be the
-                // occluded one too (the rays agree with the local counts, not
-                // with convexity, on grazing tori); ties fall back to
-                // convexity.
-                const int o0 = node.localOccluders[0], o1 = node.localOccluders[1];
-                int farSide = o1 > o0 ? 1 : 0;
-                if (o0 == o1 && node.type == ViewNodeType::CurtainFold)
-                    farSide = graph_.chains[node.chains[1]].concave ? 1 : 0;
-                const int nearSide = 1 - farSide;
-                node.nearChains = {node.chains[nearSide], kInvalidIndex};
-                node.farChains = {kInvalidIndex, node.chains[farSide]};
-                node.qiStep = node.localOccluders[farSide] - node.localOccluders[nearSide];
-                if (node.qiStep < 1)
-                    ++stats_.foldsWithoutStep;
-                if (node.type == ViewNodeType::CurtainFold &&
-                    !graph_.chains[node.chains[farSide]].concave)
-                    ++stats_.convexFarFolds;
-            }
+            // The step is the number of one-ring faces over the far chain.
+            node.qiStep = node.localOccluders[farSide] - node.localOccluders[nearSide];
+            if (node.qiStep < 1)
+                ++stats_.foldsWithoutStep;
+            if (node.type == ViewNodeType::CurtainFold &&
+                !graph_.chains[node.chains[farSide]].concave)
+                ++stats_.convexFarFolds;
         }
     }
 };
