@@ -1044,7 +1044,11 @@ void TestMainWindow::groundTruthOverlay() {
     QCOMPARE(result.samples, GroundTruthComputation::latticeSteps(surface->domain().faceCount()));
     const DenseGroundTruth oracle(surface, {result.samples});
     const GroundTruth truth = oracle.compute(camera);
-    const int crossings = imageCrossings(truth, camera);
+    // Crossings of sub-pixel loops left out as the consistent method's
+    // t-junction-min-loop says (the window asks with the method's value).
+    const double minLoop = window_->methodPanel()->parameters().getDouble("t-junction-min-loop");
+    QCOMPARE(computation->request()->smallLoopPixels, minLoop);
+    const int crossings = imageCrossings(truth, camera, minLoop);
     qInfo("ground truth on spot: N = %d, %zu loops, %zu cusps, %d crossings in %.2f s",
           result.samples, truth.loops.size(), truth.cusps.size(), crossings, result.totalSeconds);
     QVERIFY(!truth.loops.empty());

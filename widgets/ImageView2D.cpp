@@ -432,6 +432,7 @@ void ImageView2D::rebuildViewGraph() {
         ++drawn_.nodes;
         ++drawn_.nodesByType[static_cast<size_t>(graph_->nodes[n].type)];
         drawn_.cuspFolds += graph_->nodes[n].smoothCusp;
+        drawn_.smallLoopCrossings += graph_->nodes[n].smallLoop;
     }
 }
 
@@ -514,6 +515,14 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
                         .arg(tr(style.label))
                         .arg(drawn_.cuspFolds)
                         .arg(count - drawn_.cuspFolds);
+        // T-junctions of sub-pixel loops of the polylines (zig-zags next to
+        // cusps), counted apart from the crossings of the smooth contour.
+        if (static_cast<ViewNodeType>(t) == ViewNodeType::ImageIntersection &&
+            drawn_.smallLoopCrossings > 0)
+            label = QStringLiteral("%1 (%2, %3 in sub-pixel loops)")
+                        .arg(tr(style.label))
+                        .arg(count - drawn_.smallLoopCrossings)
+                        .arg(drawn_.smallLoopCrossings);
         entries.push_back({LegendEntry::Glyph, style.color.toQColor(), style.glyph, label});
     }
     appendComparisonLegend(entries);

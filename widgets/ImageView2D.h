@@ -148,6 +148,7 @@ private:
         int visible = 0, hidden = 0, simplified = 0, nodes = 0;
         std::array<int, kViewNodeTypeCount> nodesByType{};
         int cuspFolds = 0; // curtain folds at the smooth surface's cusps (ViewNode::smoothCusp)
+        int smallLoopCrossings = 0; // T-junctions of sub-pixel loops (ViewNode::smallLoop)
     };
     struct LegendEntry {
         enum Kind { Line, DashedLine, WideLine, ThinLine, SmallRing, Glyph } kind;

@@ -159,6 +159,7 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
                          {"qi_step", node.qiStep},
                          {"unreliable", node.unreliable},
                          {"smooth_cusp", node.smoothCusp},
+                         {"small_loop", node.smallLoop},
                          {"local_occluders", node.localOccluders}});
     }
     nlohmann::json conflicts = nlohmann::json::array();

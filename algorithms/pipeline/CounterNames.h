@@ -353,6 +353,9 @@ inline constexpr CounterName kChainsDecidedByVotes{"chains-decided-by-votes",
                                                    "chains decided by votes"};
 inline constexpr CounterName kZigZagVerticesIgnored{"zig-zag-vertices-ignored",
                                                     "zig-zag vertices ignored"};
+// Consistent contours: T-junctions flagged as bounding a sub-pixel loop
+// (t-junction-min-loop, ViewNode::smallLoop).
+inline constexpr CounterName kSmallLoopCrossings{"small-loop-crossings", "small-loop crossings"};
 inline constexpr CounterName kUnreliableNearFaceNodes{"unreliable-near-face-nodes",
                                                       "unreliable near-face nodes"};
 inline constexpr CounterName kSurfaceIntersectionsSeconds{"surface-intersections-seconds",

@@ -145,6 +145,11 @@ struct ViewNode {
     // the surface's radial curvature; false for curtain folds found by a
     // mesh test (convexity, near face, one-ring).
     bool smoothCusp = false;
+    // A T-junction bounding a loop of the polylines smaller than
+    // t-junction-min-loop (a bigon of two branches or a branch around a
+    // cusp, core/SmallLoopCrossings.h): a zig-zag of the sampled contour, not
+    // a crossing of the smooth one. It keeps its node and QI step.
+    bool smallLoop = false;
     // Nodes at a mesh vertex (curtain folds, Y junctions, bifurcations),
     // parallel to `chains`: how many faces of the vertex's one-ring occlude
     // that chain's first edge next to the vertex (tutorial app. C.2 test).

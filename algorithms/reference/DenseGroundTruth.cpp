@@ -2,6 +2,7 @@
 
 #include "camera/Facing.h"
 #include "contours/consistent/mesh/DomainCharts.h"
+#include "core/SmallLoopCrossings.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SurfaceFields.h"
 
@@ -392,17 +393,57 @@ namespace {
 // cell); a pair is counted only in the cell holding the lower corner of the
 // two boxes' overlap, so each pair is decided once, by the same predicate as
 // a test of every pair.
-int properCrossings(const std::vector<std::array<Vec2, 2>>& segments) {
+// Projected polylines: per segment, its ends, its curve and the image arc
+// length at its ends.
+struct ImagePolylines {
+    std::vector<std::array<Vec2, 2>> segments;
+    std::vector<Index> curve;
+    std::vector<double> arcStart;
+    std::vector<CurveArc> curves;
+
+    void add(const std::vector<Vec2>& points, bool closed) {
+        const size_t n = points.size();
+        const Index c = static_cast<Index>(curves.size());
+        double arc = 0.0;
+        for (size_t k = 0; k + (closed ? 0 : 1) < n && n >= 2; ++k) {
+            const Vec2 a = points[k], b = points[(k + 1) % n];
+            segments.push_back({a, b});
+            curve.push_back(c);
+            arcStart.push_back(arc);
+            arc += (b - a).norm();
+        }
+        curves.push_back({arc, closed});
+    }
+};
+
+// The pairs (i, j), i < j, of image segments that cross properly, with the
+// crossing's parameter along each. Segments sharing an end point never do,
+// so no adjacency test is needed. The pairs tested are those
+// whose bounding boxes share a cell of a uniform grid (about one segment per
+// cell); a pair is counted only in the cell holding the lower corner of the
+// two boxes' overlap, so each pair is decided once, by the same predicate as
+// a test of every pair.
+struct ProperCrossing {
+    size_t first = 0, second = 0;
+    double alongFirst = 0.0, alongSecond = 0.0;
+};
+std::vector<ProperCrossing> properCrossings(const std::vector<std::array<Vec2, 2>>& segments) {
     const auto orient = [](const Vec2& a, const Vec2& b, const Vec2& p) {
         return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x());
     };
+    std::vector<ProperCrossing> found;
     const auto cross = [&](size_t i, size_t j) {
         const auto& [a, b] = segments[i];
         const auto& [p, q] = segments[j];
-        return orient(p, q, a) * orient(p, q, b) < 0.0 && orient(a, b, p) * orient(a, b, q) < 0.0;
+        const double pa = orient(p, q, a), pb = orient(p, q, b);
+        const double ap = orient(a, b, p), aq = orient(a, b, q);
+        if (pa * pb < 0.0 && ap * aq < 0.0)
+            found.push_back({std::min(i, j), std::max(i, j),
+                             i < j ? pa / (pa - pb) : ap / (ap - aq),
+                             i < j ? ap / (ap - aq) : pa / (pa - pb)});
     };
     if (segments.empty())
-        return 0;
+        return found;
     Vec2 lo = segments[0][0], hi = lo;
     for (const auto& s : segments)
         for (const Vec2& p : s) {
@@ -426,7 +467,6 @@ int properCrossings(const std::vector<std::array<Vec2, 2>>& segments) {
                  x <= cellOf(boxes[i][1].x(), lo.x(), size.x()); ++x)
                 grid[static_cast<size_t>(y) * cells + x].push_back(i);
     }
-    int crossings = 0;
     for (int y = 0; y < cells; ++y)
         for (int x = 0; x < cells; ++x) {
             const std::vector<size_t>& in = grid[static_cast<size_t>(y) * cells + x];
@@ -440,36 +480,56 @@ int properCrossings(const std::vector<std::array<Vec2, 2>>& segments) {
                     if (cellOf(overlapLo.x(), lo.x(), size.x()) != x ||
                         cellOf(overlapLo.y(), lo.y(), size.y()) != y)
                         continue;
-                    crossings += cross(i, j);
+                    cross(i, j);
                 }
         }
-    return crossings;
+    return found;
+}
+
+// The proper crossings of the polylines that bound no loop smaller than
+// `smallLoopPixels` (core/SmallLoopCrossings.h).
+int crossingsOutsideSmallLoops(const ImagePolylines& lines, double smallLoopPixels) {
+    const std::vector<ProperCrossing> found = properCrossings(lines.segments);
+    std::vector<CurveCrossing> along;
+    along.reserve(found.size());
+    for (const ProperCrossing& x : found) {
+        const auto arcAt = [&](size_t segment, double t) {
+            const auto& [a, b] = lines.segments[segment];
+            return lines.arcStart[segment] + t * (b - a).norm();
+        };
+        along.push_back({lines.curve[x.first], arcAt(x.first, x.alongFirst), lines.curve[x.second],
+                         arcAt(x.second, x.alongSecond)});
+    }
+    const std::vector<std::uint8_t> small =
+        smallLoopCrossings(along, lines.curves, smallLoopPixels);
+    return static_cast<int>(std::count(small.begin(), small.end(), std::uint8_t(0)));
 }
 
 } // namespace
 
-int imageCrossings(const GroundTruth& truth, const Camera& camera) {
-    std::vector<std::array<Vec2, 2>> segments;
+int imageCrossings(const GroundTruth& truth, const Camera& camera, double smallLoopPixels) {
+    ImagePolylines lines;
     for (const GroundTruthLoop& loop : truth.loops) {
-        const size_t n = loop.points.size();
-        for (size_t k = 0; k + (loop.closed ? 0 : 1) < n; ++k)
-            segments.push_back({camera.project(loop.points[k]).pixel,
-                                camera.project(loop.points[(k + 1) % n]).pixel});
+        std::vector<Vec2> points;
+        for (const Vec3& p : loop.points)
+            points.push_back(camera.project(p).pixel);
+        lines.add(points, loop.closed);
     }
-    return properCrossings(segments);
+    return crossingsOutsideSmallLoops(lines, smallLoopPixels);
 }
 
-int imageCrossings(const std::vector<Polyline>& curves, const Camera& camera) {
-    std::vector<std::array<Vec2, 2>> segments;
+int imageCrossings(const std::vector<Polyline>& curves, const Camera& camera,
+                   double smallLoopPixels) {
+    ImagePolylines lines;
     for (const Polyline& line : curves) {
         if (line.type != CurveType::Contour)
             continue;
-        const size_t n = line.points.size();
-        for (size_t k = 0; k + (line.closed ? 0 : 1) < n; ++k)
-            segments.push_back({camera.project(line.points[k].position).pixel,
-                                camera.project(line.points[(k + 1) % n].position).pixel});
+        std::vector<Vec2> points;
+        for (const CurvePoint& p : line.points)
+            points.push_back(camera.project(p.position).pixel);
+        lines.add(points, line.closed);
     }
-    return properCrossings(segments);
+    return crossingsOutsideSmallLoops(lines, smallLoopPixels);
 }
 
 std::vector<MethodLoop> methodLoops(const Snapshot& snapshot) {

@@ -70,15 +70,19 @@ struct GroundTruth {
 // or not, each with itself and the others): pairs of projected lattice
 // segments that cross properly, i.e. the T-junctions of an exact view graph
 // (tutorial ch. 4). Crossings closer than a lattice step to a cusp may be
-// missed, like the cusps themselves.
-int imageCrossings(const GroundTruth& truth, const Camera& camera);
+// missed, like the cusps themselves. Crossings that bound a loop with less
+// than `smallLoopPixels` of arc on each side (core/SmallLoopCrossings.h:
+// the lattice's zig-zags next to cusps) are left out, as the view graph
+// leaves them out with the same value (t-junction-min-loop); 0 counts all.
+int imageCrossings(const GroundTruth& truth, const Camera& camera, double smallLoopPixels = 0.0);
 
 // The same count for a method's contour curves (snapshot curves of type
 // Contour): proper crossings of their projected segments, in double, with
 // no code shared with the view-graph builder. It tells the view graph's
 // own exactness (T-junctions against the crossings of its input) apart
 // from the input's fidelity (these crossings against the ground truth's).
-int imageCrossings(const std::vector<Polyline>& curves, const Camera& camera);
+int imageCrossings(const std::vector<Polyline>& curves, const Camera& camera,
+                   double smallLoopPixels = 0.0);
 
 // Samples the view-independent part (positions and unit normals at every
 // lattice point) once; compute() then extracts the contour for any camera.

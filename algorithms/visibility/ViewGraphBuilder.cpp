@@ -1,6 +1,7 @@
 #include "visibility/ViewGraphBuilder.h"
 
 #include "core/Predicates.h"
+#include "core/SmallLoopCrossings.h"
 #include "visibility/ImageIntersections.h"
 #include "visibility/LocalOcclusion.h"
 #include "visibility/NearFaceTest.h"
@@ -675,6 +676,17 @@ private:
         stats_.degenerateSegments = found.degenerateSegments;
         stats_.imageCrossings = static_cast<long long>(found.crossings.size());
 
+        // The crossings that split a curve, gathered first: those bounding a
+        // sub-pixel loop of two drawn curves are flagged below.
+        struct Junction {
+            Ref nearRef, farRef;
+            double tau[2] = {0.0, 0.0}; // near, far
+            Vec3 at[2];                 // near, far
+            Vec2 image = Vec2::Zero();
+            CurveType nearType = CurveType::Contour;
+            bool startOccluded = false;
+        };
+        std::vector<Junction> junctions;
         for (const ImageCrossing& crossing : found.crossings) {
             const Ref r[2] = {refs[crossing.first], refs[crossing.second]};
             if (r[0].curve == kInvalidIndex && r[1].curve == kInvalidIndex)
@@ -712,54 +724,115 @@ private:
                 continue;
             }
             const int nearI = depth[0] < depth[1] ? 0 : 1, farI = 1 - nearI;
-            const Ref nearRef = r[nearI], farRef = r[farI];
-            if (farRef.curve == kInvalidIndex)
+            Junction j;
+            j.nearRef = r[nearI];
+            j.farRef = r[farI];
+            if (j.farRef.curve == kInvalidIndex)
                 continue; // a fold edge off the curves behind a curve
-            const CurveType nearType = refType(nearRef);
-            if (nearType == CurveType::SurfaceIntersection) {
+            j.nearType = refType(j.nearRef);
+            if (j.nearType == CurveType::SurfaceIntersection) {
                 ++stats_.nonIndicatingNear; // not visibility-indicating (§4.4)
                 continue;
             }
             // A contour-generator edge that is no fold of the mesh (consistent
             // contours next to inconsistent faces) hides nothing behind it.
-            if (nearType == CurveType::Contour && refSource(nearRef) == SegmentSource::MeshEdge &&
-                !isMeshFold(refElement(nearRef))) {
+            if (j.nearType == CurveType::Contour &&
+                refSource(j.nearRef) == SegmentSource::MeshEdge &&
+                !isMeshFold(refElement(j.nearRef))) {
                 ++stats_.nonFoldNear;
                 continue;
             }
-            const Vec3 a = refPoint(nearRef, 0), b = refPoint(nearRef, 1);
-            const Vec3 f = occludingApex(nearRef, a, b);
-            const Vec3 d = refPoint(farRef, 0);
-            const bool startOccluded =
+            const Vec3 a = refPoint(j.nearRef, 0), b = refPoint(j.nearRef, 1);
+            const Vec3 f = occludingApex(j.nearRef, a, b);
+            const Vec3 d = refPoint(j.farRef, 0);
+            j.startOccluded =
                 (cameraPlaneSide(camera_, a, b, d) > 0) == (cameraPlaneSide(camera_, a, b, f) > 0);
+            j.tau[0] = tau[nearI];
+            j.tau[1] = tau[farI];
+            j.at[0] = at[nearI];
+            j.at[1] = at[farI];
+            j.image = crossing.point;
+            junctions.push_back(j);
+        }
+        const std::vector<std::uint8_t> small = smallLoopJunctions(junctions);
 
+        for (size_t k = 0; k < junctions.size(); ++k) {
+            const Junction& j = junctions[k];
             // A fold edge off the curves is no drawn curve: its crossing is
             // typed apart from the T-junctions of the drawn curves.
             const Index node =
-                addNode(nearRef.curve != kInvalidIndex ? ViewNodeType::ImageIntersection
-                                                       : ViewNodeType::HiddenFoldCrossing,
-                        at[farI]);
-            graph_.nodes[node].image = crossing.point;
-            graph_.nodes[node].nearPoint = at[nearI];
+                addNode(j.nearRef.curve != kInvalidIndex ? ViewNodeType::ImageIntersection
+                                                         : ViewNodeType::HiddenFoldCrossing,
+                        j.at[1]);
+            graph_.nodes[node].image = j.image;
+            graph_.nodes[node].nearPoint = j.at[0];
+            graph_.nodes[node].smallLoop = small[k] != 0;
+            stats_.smallLoopCrossings += small[k];
             // Tutorial §4.7: +2 behind a contour (two sheets meet at the
             // fold), +1 behind a boundary (one sheet).
-            graph_.nodes[node].qiStep = nearType == CurveType::Contour ? 2 : 1;
-            if (nearRef.curve != kInvalidIndex) {
+            graph_.nodes[node].qiStep = j.nearType == CurveType::Contour ? 2 : 1;
+            if (j.nearRef.curve != kInvalidIndex) {
                 Cut nearCut;
-                nearCut.segment = nearRef.segment;
-                nearCut.tau = tau[nearI];
+                nearCut.segment = j.nearRef.segment;
+                nearCut.tau = j.tau[0];
                 nearCut.node = node;
                 nearCut.role = Cut::Role::Near;
-                addCut(nearRef.curve, nearCut);
+                addCut(j.nearRef.curve, nearCut);
             }
             Cut farCut;
-            farCut.segment = farRef.segment;
-            farCut.tau = tau[farI];
+            farCut.segment = j.farRef.segment;
+            farCut.tau = j.tau[1];
             farCut.node = node;
             farCut.role = Cut::Role::Far;
-            farCut.occludedBefore = startOccluded;
-            addCut(farRef.curve, farCut);
+            farCut.occludedBefore = j.startOccluded;
+            addCut(j.farRef.curve, farCut);
         }
+    }
+
+    // The T-junctions of two drawn curves that bound a loop with less than
+    // options_.smallLoopPixels of image arc on each side
+    // (core/SmallLoopCrossings.h): the polylines' zig-zags next to cusps,
+    // where the smooth contour does not cross. They stay nodes with their QI
+    // steps (the polylines do cross there, and rays see the polylines'
+    // mesh), flagged so that they are not counted as the surface's.
+    template <typename Junction>
+    std::vector<std::uint8_t> smallLoopJunctions(const std::vector<Junction>& junctions) const {
+        std::vector<std::uint8_t> none(junctions.size(), 0);
+        if (!(options_.smallLoopPixels > 0.0))
+            return none;
+        // Image arc length at each curve's vertices.
+        std::vector<std::vector<double>> arcs(curves_.size());
+        std::vector<CurveArc> lengths(curves_.size());
+        for (Index c = 0; c < static_cast<Index>(curves_.size()); ++c) {
+            std::vector<double>& a = arcs[static_cast<size_t>(c)];
+            a.push_back(0.0);
+            for (Index s = 0; s < segmentCount(c); ++s)
+                a.push_back(a.back() + (camera_.project(refPoint({c, s}, 1)).pixel -
+                                        camera_.project(refPoint({c, s}, 0)).pixel)
+                                           .norm());
+            lengths[static_cast<size_t>(c)] = {a.back(), curves_[c].closed};
+        }
+        const auto arcAt = [&](const Ref& r, double tau) {
+            const std::vector<double>& a = arcs[static_cast<size_t>(r.curve)];
+            const size_t s = static_cast<size_t>(r.segment);
+            return a[s] + tau * (a[s + 1] - a[s]);
+        };
+        std::vector<size_t> index; // drawn-curve junctions among all
+        std::vector<CurveCrossing> along;
+        for (size_t k = 0; k < junctions.size(); ++k) {
+            const Junction& j = junctions[k];
+            if (j.nearRef.curve == kInvalidIndex)
+                continue;
+            index.push_back(k);
+            along.push_back({j.nearRef.curve, arcAt(j.nearRef, j.tau[0]), j.farRef.curve,
+                             arcAt(j.farRef, j.tau[1])});
+        }
+        const std::vector<std::uint8_t> flagged =
+            smallLoopCrossings(along, lengths, options_.smallLoopPixels);
+        std::vector<std::uint8_t> out = none;
+        for (size_t u = 0; u < index.size(); ++u)
+            out[index[u]] = flagged[u];
+        return out;
     }
 
     // Open curves must start and end at a node.

@@ -47,6 +47,11 @@ struct ViewGraphOptions {
     // holds on closed meshes that do not intersect themselves; where the
     // mesh does, a concave edge can sit in an inverted region and be seen.
     bool concaveLowerBound = true;
+    // Image crossings of two drawn curves that bound a loop with less than
+    // this image arc on each side (pixels) are zig-zags of the polylines:
+    // their T-junctions are flagged ViewNode::smallLoop
+    // (core/SmallLoopCrossings.h); 0 flags none.
+    double smallLoopPixels = 0.0;
 };
 
 struct ViewGraphInput {
@@ -99,6 +104,7 @@ struct ViewGraphBuildStats {
     long long cuspFoldsSidedByCurvature = 0;
     long long fallbackFolds = 0;
     long long zigZagsIgnored = 0;
+    long long smallLoopCrossings = 0; // T-junctions flagged as bounding a sub-pixel loop
     double sweepSeconds = 0.0;
 };
 

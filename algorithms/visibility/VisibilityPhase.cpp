@@ -34,6 +34,7 @@ constexpr const char* kNearFaceEpsilon = "near-face-epsilon";
 constexpr const char* kShortChain = "ambiguity-short-chain";
 constexpr const char* kCuspFolds = "curtain-folds-from-cusps";
 constexpr const char* kKeepPropagation = "visibility-keep-clean-propagation";
+constexpr const char* kMinLoop = "t-junction-min-loop";
 constexpr const char* kSurfaceIntersections = "surface-intersections";
 constexpr const char* kVotes = "visibility-votes";
 constexpr const char* kIgnoredFaces = "visibility-ignored-faces";
@@ -90,6 +91,7 @@ struct VisibilityOptions {
     double shortChainPixels = 0.0;     // consistent: ambiguity-short-chain
     bool smoothCuspFolds = false;      // consistent: curtain-folds-from-cusps
     bool keepCleanPropagation = false; // consistent: visibility-keep-clean-propagation
+    double minLoopPixels = 0.0;        // consistent: t-junction-min-loop
     int votes = 0;                     // interpolated: visibility-votes
     std::string ignoredFaces;          // interpolated: visibility-ignored-faces
     static VisibilityOptions read(VisibilityFlavor flavor, const ParameterSet& p) {
@@ -102,6 +104,7 @@ struct VisibilityOptions {
             o.shortChainPixels = p.getDouble(kShortChain);
             o.smoothCuspFolds = p.getBool(kCuspFolds);
             o.keepCleanPropagation = p.getBool(kKeepPropagation);
+            o.minLoopPixels = p.getDouble(kMinLoop);
         }
         if (flavor == VisibilityFlavor::Interpolated) {
             o.votes = p.getInt(kVotes);
@@ -193,8 +196,10 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                                ? (parameters.smoothCuspFolds ? CurtainFoldTest::SmoothCusps
                                                              : CurtainFoldTest::NearFace)
                                : CurtainFoldTest::None;
-        if (flavor == VisibilityFlavor::Consistent)
+        if (flavor == VisibilityFlavor::Consistent) {
             options.nearFaceEpsilon = parameters.nearFaceEpsilon;
+            options.smallLoopPixels = parameters.minLoopPixels;
+        }
         // Exact mesh visibility needs every fold of the mesh as an occluder
         // (see ViewGraphOptions); interpolated contours keep the tutorial's
         // simpler model where the curves themselves occlude.
@@ -346,6 +351,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter(counters::kMixedConvexityChains, static_cast<double>(built.mixedConvexityChains));
     if (flavor == VisibilityFlavor::Consistent) {
         s.setCounter(counters::kUnreliableNearFaceNodes, static_cast<double>(unreliable));
+        s.setCounter(counters::kSmallLoopCrossings, static_cast<double>(built.smallLoopCrossings));
         if (parameters.keepCleanPropagation && parameters.smoothCuspFolds) {
             s.setCounter(counters::kChainsKeptFromPropagation,
                          static_cast<double>(resolved.keptFromPropagation));
@@ -535,6 +541,18 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
              true,
              0,
              0,
+             {}});
+        m.parameters.push_back(
+            {kMinLoop,
+             "T-junction smallest loop (px)",
+             "Crossings bounding a loop of contour with less than this image arc (two crossings "
+             "of two branches, or a branch around a cusp) are zig-zags of the polyline: their "
+             "T-junctions keep their QI steps but are flagged and counted apart. 0 flags none. "
+             "Not in the paper.",
+             ParameterType::Double,
+             1.0,
+             0.0,
+             100.0,
              {}});
         m.parameters.push_back({kShortChain,
                                 "Short chain (px)",

@@ -76,7 +76,7 @@ void GroundTruthComputation::start() {
             const DenseGroundTruth& sampling = *outcome.sampling;
             auto truth = std::make_shared<GroundTruth>(sampling.compute(request.camera));
             const auto crossingsStart = Clock::now();
-            r.imageCrossings = imageCrossings(*truth, request.camera);
+            r.imageCrossings = imageCrossings(*truth, request.camera, request.smallLoopPixels);
             r.crossingSeconds = since(crossingsStart);
             r.samples = sampling.options().samples;
             r.domainFaces = sampling.surface().domain().faceCount();

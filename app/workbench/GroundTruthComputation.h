@@ -25,13 +25,16 @@ struct GroundTruthRequest {
     std::shared_ptr<const PolygonMesh> cage;
     SurfaceKind kind = SurfaceKind::CatmullClark;
     Camera camera;
+    // Crossings bounding a loop smaller than this are not counted
+    // (imageCrossings; the method's t-junction-min-loop, 0 without one).
+    double smallLoopPixels = 0.0;
 
     bool operator==(const GroundTruthRequest&) const = default;
 };
 
 struct GroundTruthResult {
     std::shared_ptr<const GroundTruth> truth;
-    int imageCrossings = 0; // imageCrossings(truth, camera)
+    int imageCrossings = 0; // imageCrossings(truth, camera, request's smallLoopPixels)
     int samples = 0;        // lattice steps N per domain face side
     Index domainFaces = 0;
     size_t latticePoints = 0;

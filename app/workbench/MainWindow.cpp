@@ -965,7 +965,10 @@ void MainWindow::updateGroundTruthRequest() {
         try {
             if (const std::optional<SurfaceKind> kind =
                     selectedSurfaceKind(parameters, *input->cage))
-                request = GroundTruthRequest{input->cage, *kind, *run_->camera()};
+                request = GroundTruthRequest{input->cage, *kind, *run_->camera(),
+                                             parameters.has("t-junction-min-loop")
+                                                 ? parameters.getDouble("t-junction-min-loop")
+                                                 : 0.0};
             else
                 unavailable = tr("The ground truth is the contour of a smooth surface, and %1 "
                                  "runs on the triangulated cage (surface = none): choose a smooth "

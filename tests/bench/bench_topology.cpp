@@ -100,7 +100,7 @@ void readGraph(const Snapshot& s, ViewFigures& out) {
             };
             const bool near = contour(n.nearChains[0]) || contour(n.nearChains[1]);
             const bool far = contour(n.farChains[0]) || contour(n.farChains[1]);
-            out.tJunctions += near && far;
+            out.tJunctions += near && far && !n.smallLoop;
         }
     }
     out.conflicts = static_cast<int>(g.conflicts.size());
@@ -132,16 +132,19 @@ ViewFigures runView(const Method& method, const Snapshot& input, const Camera& c
     f.methodCusps = static_cast<int>(last.counter(counters::kCusps, 0.0));
     if (last.viewGraph)
         readGraph(last, f);
+    // Crossings bounding a sub-pixel loop are left out of every count alike:
+    // the graph flags them by t-junction-min-loop (0 in the paper preset).
+    const double minLoop = parameters.getDouble("t-junction-min-loop");
     if (last.curves)
-        f.curveCrossings = imageCrossings(*last.curves, camera);
+        f.curveCrossings = imageCrossings(*last.curves, camera, minLoop);
 
     const GroundTruth t = truth.compute(camera);
     const GroundTruth h = half.compute(camera);
     f.truthLoops = static_cast<int>(t.loops.size());
     f.truthCusps = static_cast<int>(t.cusps.size());
     f.halfCusps = static_cast<int>(h.cusps.size());
-    f.truthCrossings = imageCrossings(t, camera);
-    f.halfCrossings = imageCrossings(h, camera);
+    f.truthCrossings = imageCrossings(t, camera, minLoop);
+    f.halfCrossings = imageCrossings(h, camera, minLoop);
     const TopologyComparison c = compareTopology(t, last, truth.surfacePtr(), &camera);
     f.loops = c.methodLoops;
     f.loopsMatch = c.loopCountsMatch();

@@ -163,6 +163,7 @@ Method makeConsistentContourMethod() {
              {"near-face-epsilon", 1.0},
              {"curtain-folds-from-cusps", false},
              {"visibility-keep-clean-propagation", false},
+             {"t-junction-min-loop", 0.0},
          }},
     };
     m.outputs = consistentOutputs();

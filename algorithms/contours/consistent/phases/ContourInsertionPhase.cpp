@@ -150,8 +150,9 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
     if (unconverged > 0)
         s.notes.push_back(std::to_string(unconverged) +
                           " roots did not reach |g| <= root-tolerance within root-max-iterations "
-                          "bisection steps (g is not continuous along the edge there); their C "
-                          "vertices are counted by the |g| post-condition");
+                          "bisection steps (g jumps along the edge there: a crease); the "
+                          "post-condition checks that g changes sign within the tolerance of "
+                          "their C vertices");
     if (cancelled > 0)
         s.notes.push_back(std::to_string(cancelled) +
                           " FB edges kept: their endpoints' preimages have no common chart, "

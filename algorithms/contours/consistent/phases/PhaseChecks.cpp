@@ -7,7 +7,9 @@
 #include "contours/consistent/predicates/FaceClassification.h"
 #include "contours/consistent/predicates/RadialTriangles.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
 
@@ -58,6 +60,30 @@ std::vector<InvariantCheck> commonChecks(const PhaseContext& ctx, const Snapshot
     return {embedding, folds, charts, degenerate};
 }
 
+// Whether C vertex v lies within `tol` (a distance) of the contour, the
+// set where g changes sign (§6.2 e): |g| <= tol, or g has the other sign at
+// distance tol from v along one of its edges. At a crease of the surface the
+// normal, and so g, jumps: the contour runs along the crease and bisection
+// ends next to the jump with |g| large, yet on the contour.
+bool contourWithin(const ConsistentMesh& m, Index v, double tol) {
+    const MeshVertex& x = m.vertex(v);
+    if (std::abs(x.g) <= tol)
+        return true;
+    for (Index w : m.neighbours(v)) {
+        const MeshVertex& y = m.vertex(w);
+        if (!(x.g * y.g < 0.0))
+            continue;
+        const double length = (y.position - x.position).norm();
+        if (!(length > 0.0))
+            continue;
+        const std::optional<Preimage> p =
+            m.segment(x.preimage, y.preimage).at(std::min(1.0, tol / length));
+        if (p && x.g * m.evaluateWithoutCurvature(*p).g <= 0.0)
+            return true;
+    }
+    return false;
+}
+
 std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, const ConsistentMesh& m,
                                                    const Analysis& a) {
     InvariantCheck fb = check("no FB edge remains");
@@ -66,7 +92,8 @@ std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, cons
     InvariantCheck undefined = check("every face has a defined VBO");
     undefined.violations = a.undefinedVbo;
     undefined.firstExample = a.firstUndefined;
-    InvariantCheck root = check("every C vertex has |g| <= root tolerance");
+    InvariantCheck root = check("every C vertex lies within root tolerance of g = 0 (|g| <= "
+                                "root tolerance, or g changes sign that close: a crease)");
     InvariantCheck valence = check("every cusp vertex has valence 4 until radial edges are added "
                                    "around it (Fig. 18d-e)");
     const double tol = ContourRootOptions::read(ctx.parameters).tolerance * sceneScale(m);
@@ -74,7 +101,7 @@ std::vector<InvariantCheck> contourInsertionChecks(const PhaseContext& ctx, cons
         const MeshVertex& x = m.vertex(v);
         // The normal wiggle moves vertices off the surface; g at the
         // preimage is unchanged by it.
-        if (x.label == VertexLabel::Contour && !(std::abs(x.g) <= tol))
+        if (x.label == VertexLabel::Contour && !contourWithin(m, v, tol))
             violate(root, "vertex " + std::to_string(v) + " g " + std::to_string(x.g));
         bool radial = false;
         for (Index w : x.cusp ? m.neighbours(v) : std::vector<Index>{})
