@@ -115,6 +115,10 @@ class TestConsistentViewGraph : public QObject {
         const DenseGroundTruth truth(surface, {samples, 4});
         const DenseGroundTruth half(surface, {samples / 2, 4});
         int settled = 0, foldsMatch = 0, tMatch = 0;
+        // Both sides leave out crossings of sub-pixel loops by the same rule
+        // (core/SmallLoopCrossings.h).
+        const double minLoop = ParameterSet::defaults(findMethod("consistent")->parameters)
+                                   .getDouble("t-junction-min-loop");
         for (size_t v = 0; v < views.size(); ++v) {
             const Snapshot s = runMethod("consistent", cage, views[v], {});
             QVERIFY(s.viewGraph);
@@ -122,10 +126,6 @@ class TestConsistentViewGraph : public QObject {
             const GroundTruth t = truth.compute(views[v]);
             const GroundTruth h = half.compute(views[v]);
             const int cusps = static_cast<int>(t.cusps.size());
-            // Both sides leave out crossings of sub-pixel loops by the
-            // same rule (core/SmallLoopCrossings.h).
-            const double minLoop = ParameterSet::defaults(findMethod("consistent")->parameters)
-                                       .getDouble("t-junction-min-loop");
             const int crossings = imageCrossings(t, views[v], minLoop);
             const bool isSettled = cusps == static_cast<int>(h.cusps.size()) &&
                                    crossings == imageCrossings(h, views[v], minLoop);

@@ -14,10 +14,10 @@ double arcDistance(const CurveArc& curve, double a, double b) {
     return curve.closed ? std::min(d, std::max(0.0, curve.length - d)) : d;
 }
 
+// A bigon (two crossings) or a monogon (first == second).
 struct Loop {
     double size = 0.0; // the longer of its arcs
     size_t first = 0, second = 0;
-    bool bigon = false;
 };
 
 } // namespace
@@ -40,7 +40,7 @@ std::vector<std::uint8_t> smallLoopCrossings(std::span<const CurveCrossing> cros
         if (x.curveA == x.curveB) {
             const double d = arc(x.curveA, x.arcA, x.arcB);
             if (d < loopPixels)
-                loops.push_back({d, i, i, false});
+                loops.push_back({d, i, i});
         }
     }
     for (const auto& [pair, members] : byPair)
@@ -64,7 +64,7 @@ std::vector<std::uint8_t> smallLoopCrossings(std::span<const CurveCrossing> cros
                 }
                 const double size = std::max(alongA, alongB);
                 if (size < loopPixels)
-                    loops.push_back({size, members[u], members[w], true});
+                    loops.push_back({size, members[u], members[w]});
             }
     std::stable_sort(loops.begin(), loops.end(),
                      [](const Loop& a, const Loop& b) { return a.size < b.size; });

@@ -387,12 +387,6 @@ GroundTruth DenseGroundTruth::compute(const Camera& camera) const {
 
 namespace {
 
-// Pairs of image segments that cross properly. Segments sharing an end
-// point never do, so no adjacency test is needed. The pairs tested are those
-// whose bounding boxes share a cell of a uniform grid (about one segment per
-// cell); a pair is counted only in the cell holding the lower corner of the
-// two boxes' overlap, so each pair is decided once, by the same predicate as
-// a test of every pair.
 // Projected polylines: per segment, its ends, its curve and the image arc
 // length at its ends.
 struct ImagePolylines {
@@ -490,6 +484,8 @@ std::vector<ProperCrossing> properCrossings(const std::vector<std::array<Vec2, 2
 // `smallLoopPixels` (core/SmallLoopCrossings.h).
 int crossingsOutsideSmallLoops(const ImagePolylines& lines, double smallLoopPixels) {
     const std::vector<ProperCrossing> found = properCrossings(lines.segments);
+    if (!(smallLoopPixels > 0.0))
+        return static_cast<int>(found.size());
     std::vector<CurveCrossing> along;
     along.reserve(found.size());
     for (const ProperCrossing& x : found) {

@@ -508,6 +508,15 @@ private:
     struct Ref {
         Index curve, segment; // for a fold edge: kInvalidIndex, the edge
     };
+    // An image crossing where the far curve is split (tutorial §4.6 step 5).
+    struct Junction {
+        Ref nearRef, farRef;
+        double tau[2] = {0.0, 0.0}; // near, far
+        Vec3 at[2];                 // near, far
+        Vec2 image = Vec2::Zero();
+        CurveType nearType = CurveType::Contour;
+        bool startOccluded = false;
+    };
     Vec3 refPoint(const Ref& r, int end) const {
         if (r.curve != kInvalidIndex)
             return point(r.curve, r.segment + end).position;
@@ -678,14 +687,6 @@ private:
 
         // The crossings that split a curve, gathered first: those bounding a
         // sub-pixel loop of two drawn curves are flagged below.
-        struct Junction {
-            Ref nearRef, farRef;
-            double tau[2] = {0.0, 0.0}; // near, far
-            Vec3 at[2];                 // near, far
-            Vec2 image = Vec2::Zero();
-            CurveType nearType = CurveType::Contour;
-            bool startOccluded = false;
-        };
         std::vector<Junction> junctions;
         for (const ImageCrossing& crossing : found.crossings) {
             const Ref r[2] = {refs[crossing.first], refs[crossing.second]};
@@ -754,7 +755,7 @@ private:
             j.image = crossing.point;
             junctions.push_back(j);
         }
-        const std::vector<std::uint8_t> small = smallLoopJunctions(junctions);
+        const std::vector<std::uint8_t> small = smallLoopJunctions(junctions, refs, segments);
 
         for (size_t k = 0; k < junctions.size(); ++k) {
             const Junction& j = junctions[k];
@@ -795,23 +796,24 @@ private:
     // where the smooth contour does not cross. They stay nodes with their QI
     // steps (the polylines do cross there, and rays see the polylines'
     // mesh), flagged so that they are not counted as the surface's.
-    template <typename Junction>
-    std::vector<std::uint8_t> smallLoopJunctions(const std::vector<Junction>& junctions) const {
-        std::vector<std::uint8_t> none(junctions.size(), 0);
+    // `refs` and `segments` are the sweep's input: every curve's segments
+    // in order, already projected.
+    std::vector<std::uint8_t> smallLoopJunctions(const std::vector<Junction>& junctions,
+                                                 const std::vector<Ref>& refs,
+                                                 const std::vector<ImageSegment>& segments) const {
+        std::vector<std::uint8_t> out(junctions.size(), 0);
         if (!(options_.smallLoopPixels > 0.0))
-            return none;
+            return out;
         // Image arc length at each curve's vertices.
-        std::vector<std::vector<double>> arcs(curves_.size());
+        std::vector<std::vector<double>> arcs(curves_.size(), std::vector<double>{0.0});
+        for (size_t k = 0; k < refs.size(); ++k)
+            if (refs[k].curve != kInvalidIndex) {
+                std::vector<double>& a = arcs[static_cast<size_t>(refs[k].curve)];
+                a.push_back(a.back() + (segments[k].b - segments[k].a).norm());
+            }
         std::vector<CurveArc> lengths(curves_.size());
-        for (Index c = 0; c < static_cast<Index>(curves_.size()); ++c) {
-            std::vector<double>& a = arcs[static_cast<size_t>(c)];
-            a.push_back(0.0);
-            for (Index s = 0; s < segmentCount(c); ++s)
-                a.push_back(a.back() + (camera_.project(refPoint({c, s}, 1)).pixel -
-                                        camera_.project(refPoint({c, s}, 0)).pixel)
-                                           .norm());
-            lengths[static_cast<size_t>(c)] = {a.back(), curves_[c].closed};
-        }
+        for (size_t c = 0; c < curves_.size(); ++c)
+            lengths[c] = {arcs[c].back(), curves_[c].closed};
         const auto arcAt = [&](const Ref& r, double tau) {
             const std::vector<double>& a = arcs[static_cast<size_t>(r.curve)];
             const size_t s = static_cast<size_t>(r.segment);
@@ -829,7 +831,6 @@ private:
         }
         const std::vector<std::uint8_t> flagged =
             smallLoopCrossings(along, lengths, options_.smallLoopPixels);
-        std::vector<std::uint8_t> out = none;
         for (size_t u = 0; u < index.size(); ++u)
             out[index[u]] = flagged[u];
         return out;
