@@ -32,6 +32,7 @@
 #include <map>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkPoints.h>
@@ -186,6 +187,14 @@ void TestConsistentView::overlayDataMatchesHandMadeFields() {
     s.setField(fields::kLabel, {L::Vertex, label, ""});
     s.setField(fields::kCusp, {L::Vertex, cusp, ""});
     s.setField(fields::kRadialEdge, {L::Edge, radialEdge, ""});
+    // Powell-Sabin: patch (1), macro-patch (2) and cut (3) edges, and cones.
+    std::vector<int> patchEdge(ne, 0), cone(nv, 0);
+    for (Index e = 2; e < ne; e += 5)
+        patchEdge[e] = 1 + e % 3;
+    for (Index v = 1; v < nv; v += 15)
+        cone[v] = 1;
+    s.setField(fields::kPatchEdge, {L::Edge, patchEdge, ""});
+    s.setField(fields::kCone, {L::Vertex, cone, ""});
 
     // Outlines: one closed 4-id line per inconsistent face, on its corners.
     vtkSmartPointer<vtkPolyData> outlines = inconsistentFaceOutlines(s);
@@ -259,6 +268,14 @@ void TestConsistentView::overlayDataMatchesHandMadeFields() {
     QCOMPARE(view.overlayElementCount(SceneOverlay::Cusps), countEqual(s.field(fields::kCusp), 1));
     QCOMPARE(view.overlayElementCount(SceneOverlay::RadialEdges),
              countEqual(s.field(fields::kRadialEdge), 1));
+    QCOMPARE(view.overlayElementCount(SceneOverlay::PatchEdges),
+             static_cast<long long>(std::count_if(patchEdge.begin(), patchEdge.end(),
+                                                  [](int edgeLabel) { return edgeLabel != 0; })));
+    QCOMPARE(view.overlayElementCount(SceneOverlay::Cones), countEqual(s.field(fields::kCone), 1));
+    // The patch edges keep their label as cell scalars (one colour each).
+    vtkPolyData* patchLines = view.overlayData(SceneOverlay::PatchEdges);
+    QVERIFY(patchLines && patchLines->GetCellData()->GetScalars());
+    QCOMPARE(patchLines->GetCellData()->GetScalars()->GetRange()[1], 3.0);
     for (int i = 0; i < kSceneOverlayCount; ++i)
         QVERIFY(view.isOverlayShown(static_cast<SceneOverlay>(i)));
     view.setOverlayEnabled(SceneOverlay::Cusps, false);
@@ -343,6 +360,8 @@ void TestConsistentView::checkPhase(int phase) {
         {SceneOverlay::ContourVertices, fields::kLabel, 0, "contour vertices"},
         {SceneOverlay::Cusps, fields::kCusp, 1, "cusps"},
         {SceneOverlay::RadialEdges, fields::kRadialEdge, 1, "radial edges"},
+        {SceneOverlay::PatchEdges, fields::kPatchEdge, 1, ""},
+        {SceneOverlay::Cones, fields::kCone, 1, ""},
     };
     for (const auto& e : expected) {
         const bool has = s.field(e.field) != nullptr;

@@ -116,6 +116,7 @@ private slots:
     void formatsReadIdentically_data();
     void formatsReadIdentically();
     void objRelativeIndices();
+    void objTextureCoordinates();
     void quadMeshStaysQuads();
     void plyExtraPropertiesAsLabels();
     void writersRoundTrip_data();
@@ -258,6 +259,34 @@ void TestMeshIo::objRelativeIndices() {
     const PolygonMesh mixed = readObj(path.toStdString());
     QCOMPARE(std::vector<Index>(mixed.face(0).begin(), mixed.face(0).end()),
              (std::vector<Index>{0, 1, 2}));
+}
+
+void TestMeshIo::objTextureCoordinates() {
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    const QString path = dir.filePath("uv.obj");
+    // Every corner has a vt (one relative, one forward): kept, per corner.
+    writeBytes(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0.5 0.25\nvt 1 0\n"
+                     "f 1/1 2/2 3/-1\nf 2/2/1 4/3 3/1\nvt 0.75 1\n");
+    const PolygonMesh mesh = readObj(path.toStdString());
+    QVERIFY(mesh.hasTextureCoordinates());
+    QCOMPARE(mesh.textureCoordinates.size(), size_t(3));
+    QCOMPARE(mesh.cornerTexture, (std::vector<Index>{0, 1, 1, 1, 2, 0}));
+    QCOMPARE(mesh.textureCoordinates[0], Vec2(0.5, 0.25));
+    // One corner without: none are kept (a partial layout is of no use).
+    writeBytes(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3\n");
+    QVERIFY(!readObj(path.toStdString()).hasTextureCoordinates());
+    // A vt index beyond the file's texture coordinates: dropped too.
+    writeBytes(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/7\n");
+    QVERIFY(!readObj(path.toStdString()).hasTextureCoordinates());
+    // A malformed vt line names the problem.
+    writeBytes(path, "v 0 0 0\nvt 0 x\n");
+    try {
+        readObj(path.toStdString());
+        QFAIL("a bad texture coordinate was accepted");
+    } catch (const std::exception& e) {
+        QVERIFY2(std::string(e.what()).find("texture coordinate") != std::string::npos, e.what());
+    }
 }
 
 void TestMeshIo::quadMeshStaysQuads() {

@@ -131,10 +131,13 @@ void TestResources::toggleIconsAreResourceDrawings() {
     MainWindow window;
     // The overlay and view-graph toggles, in their enums' order, show the
     // SVG of resources/icons/ named after them.
-    const QStringList overlayIcons{
-        QStringLiteral("overlay-inconsistent-faces"), QStringLiteral("overlay-radial-faces"),
-        QStringLiteral("overlay-contour-vertices"), QStringLiteral("overlay-cusps"),
-        QStringLiteral("overlay-radial-edges")};
+    const QStringList overlayIcons{QStringLiteral("overlay-inconsistent-faces"),
+                                   QStringLiteral("overlay-radial-faces"),
+                                   QStringLiteral("overlay-contour-vertices"),
+                                   QStringLiteral("overlay-cusps"),
+                                   QStringLiteral("overlay-radial-edges"),
+                                   QStringLiteral("overlay-patch-edges"),
+                                   QStringLiteral("overlay-cones")};
     const QStringList viewGraphIcons{
         QStringLiteral("view-graph-hidden-curves"), QStringLiteral("view-graph-colour-by-qi"),
         QStringLiteral("view-graph-nodes"), QStringLiteral("view-graph-simplified-curves")};

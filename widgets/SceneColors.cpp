@@ -20,7 +20,7 @@ struct Palette {
     SceneColor frontFace{}, backFace{}, edgeOnFace{}, unclassifiedFace{}, contour3D{}, contour2D{},
         boundary{}, intersection{}, frustum{}, controlCage{}, undefinedVbo{}, inconsistentOutline{},
         radialTint{}, standardRadialTint{}, comparisonOther{}, comparisonOnlyHere{}, groundTruth{},
-        radialEdge{}, contourVertex{}, cuspVertex{}, selection{}, divergingNegative{},
+        radialEdge{}, contourVertex{}, cuspVertex{}, patchEdge{}, macroPatchEdge{}, cutEdge{}, cone{}, selection{}, divergingNegative{},
         divergingPositive{}, nanValue{}, contourOverField{}, scalarBarText{}, backgroundTop{},
         backgroundBottom{};
 };
@@ -56,6 +56,10 @@ const std::pair<const char*, SceneColor*> kSceneKeys[] = {
     {"radial-edge", &palette.radialEdge},
     {"contour-vertex", &palette.contourVertex},
     {"cusp-vertex", &palette.cuspVertex},
+    {"patch-edge", &palette.patchEdge},
+    {"macro-patch-edge", &palette.macroPatchEdge},
+    {"cut-edge", &palette.cutEdge},
+    {"cone", &palette.cone},
     {"selection", &palette.selection},
     {"contour-over-field", &palette.contourOverField},
     {"scalar-bar-text", &palette.scalarBarText},
@@ -166,6 +170,10 @@ const SceneColor& kComparisonOther = palette.comparisonOther;
 const SceneColor& kComparisonOnlyHere = palette.comparisonOnlyHere;
 const SceneColor& kGroundTruth = palette.groundTruth;
 const SceneColor& kRadialEdge = palette.radialEdge;
+const SceneColor& kPatchEdge = palette.patchEdge;
+const SceneColor& kMacroPatchEdge = palette.macroPatchEdge;
+const SceneColor& kCutEdge = palette.cutEdge;
+const SceneColor& kCone = palette.cone;
 const SceneColor& kContourVertex = palette.contourVertex;
 const SceneColor& kCuspVertex = palette.cuspVertex;
 const SceneColor& kSelection = palette.selection;

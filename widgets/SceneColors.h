@@ -62,6 +62,14 @@ inline constexpr double kGroundTruthCuspSize3D = 8.0;   // pixels
 extern const SceneColor& kRadialEdge;
 extern const SceneColor& kContourVertex;
 extern const SceneColor& kCuspVertex;
+// The Powell-Sabin spline: patch boundaries light grey, macro-patch
+// boundaries (the layout's edges) charcoal, the cut magenta; cones black dots.
+extern const SceneColor& kPatchEdge;
+extern const SceneColor& kMacroPatchEdge;
+extern const SceneColor& kCutEdge;
+extern const SceneColor& kCone;
+inline constexpr double kPatchEdgeWidth = 1.5; // pixels
+inline constexpr double kConeSize = 11.0;      // pixels
 inline constexpr double kInconsistentOutlineWidth = 3.0; // pixels
 inline constexpr double kRadialEdgeWidth = 2.5;          // pixels
 inline constexpr double kContourVertexSize = 7.0;        // pixels

@@ -401,6 +401,21 @@ vtkSmartPointer<vtkPolyData> markedEdgesToPolyData(const Snapshot& snapshot,
     return poly;
 }
 
+vtkSmartPointer<vtkPolyData> labelledEdgesToPolyData(const Snapshot& snapshot,
+                                                     const std::string& field) {
+    vtkSmartPointer<vtkPolyData> poly = markedEdgesToPolyData(snapshot, field);
+    if (!poly)
+        return nullptr;
+    const std::vector<int>& labels = *meshLabels(snapshot, field, FieldLocation::Edge);
+    auto scalars = vtkSmartPointer<vtkIntArray>::New();
+    scalars->SetName(field.c_str());
+    for (int label : labels)
+        if (label != 0)
+            scalars->InsertNextValue(label);
+    poly->GetCellData()->SetScalars(scalars);
+    return poly;
+}
+
 vtkSmartPointer<vtkPolyData> frustumToPolyData(const Camera& camera, double depth) {
     std::vector<Vec3> positions;
     std::vector<vtkIdType> offsets{0};

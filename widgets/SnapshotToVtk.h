@@ -115,6 +115,10 @@ vtkSmartPointer<vtkPolyData> markedVerticesToPolyData(const Snapshot& snapshot,
 // fields::kRadialEdge).
 vtkSmartPointer<vtkPolyData> markedEdgesToPolyData(const Snapshot& snapshot,
                                                    const std::string& field);
+// The edges whose label in the int edge field `field` is not 0, as lines
+// with that label as cell scalars (null when the snapshot lacks the field).
+vtkSmartPointer<vtkPolyData> labelledEdgesToPolyData(const Snapshot& snapshot,
+                                                     const std::string& field);
 
 // The camera's viewing frustum as lines: perspective, a pyramid from the eye
 // to the image rectangle at `depth`; orthographic, a box from the eye plane

@@ -4,7 +4,8 @@ namespace contour {
 
 const std::vector<Method>& contourMethods() {
     static const std::vector<Method> methods{
-        makeMeshContourMethod(), makeInterpolatedContourMethod(), makeConsistentContourMethod()};
+        makeMeshContourMethod(), makeInterpolatedContourMethod(), makeConsistentContourMethod(),
+        makePowellSabinMethod()};
     return methods;
 }
 
@@ -17,8 +18,6 @@ const Method* findMethod(const std::string& name) {
 
 const std::vector<PlannedMethod>& plannedMethods() {
     static const std::vector<PlannedMethod> planned{
-        {"powell-sabin", "Powell-Sabin contours (Capouellez et al. 2023)",
-         "not implemented yet: Powell-Sabin contours are planned after the consistent method"},
         // Summers 2016 traces the contour generator on the limit surface itself
         // instead of extracting it from a tessellation.
         {"traced", "Traced curves (Summers 2016)",

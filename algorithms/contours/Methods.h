@@ -8,9 +8,9 @@
 
 namespace contour {
 
-// Methods that run today: "mesh", "interpolated" and "consistent" (every
+// Methods that run today: "mesh", "interpolated", "consistent" (every
 // sub-phase of Bénard 2014 §6; some inconsistent faces remain, see its
-// description).
+// description) and "powell-sabin" (the fitted spline, without contours yet).
 const std::vector<Method>& contourMethods();
 const Method* findMethod(const std::string& name);
 
@@ -27,5 +27,8 @@ const PlannedMethod* findPlannedMethod(const std::string& name);
 Method makeMeshContourMethod();
 Method makeInterpolatedContourMethod();
 Method makeConsistentContourMethod();
+// The fitted Powell-Sabin spline (Capouellez et al. 2023 §5); its contours
+// (§4) are not computed yet.
+Method makePowellSabinMethod();
 
 } // namespace contour

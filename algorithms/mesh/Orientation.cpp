@@ -161,9 +161,14 @@ PolygonMesh orientOutward(const PolygonMesh& mesh, OrientationReport* reportOut)
         component.flipped = component.inward();
     if (report.flippedCount() > 0)
         for (Index f = 0; f < mesh.faceCount(); ++f)
-            if (report.components[report.faceComponent[f]].flipped)
+            if (report.components[report.faceComponent[f]].flipped) {
                 std::reverse(oriented.indices.begin() + mesh.offsets[f] + 1,
                              oriented.indices.begin() + mesh.offsets[f + 1]);
+                // Texture coordinates stay with their corners.
+                if (oriented.hasTextureCoordinates())
+                    std::reverse(oriented.cornerTexture.begin() + mesh.offsets[f] + 1,
+                                 oriented.cornerTexture.begin() + mesh.offsets[f + 1]);
+            }
     if (reportOut)
         *reportOut = std::move(report);
     return oriented;

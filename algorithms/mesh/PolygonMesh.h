@@ -28,6 +28,13 @@ public:
     std::vector<EdgeCrease> creases;
     std::vector<std::pair<Index, double>> cornerSharpness;
 
+    // Texture coordinates (OBJ "vt"), kept only when every face corner names
+    // one: corner k of `indices` has textureCoordinates[cornerTexture[k]].
+    // The Powell-Sabin method reads a cone parameterization from them.
+    std::vector<Vec2> textureCoordinates;
+    std::vector<Index> cornerTexture;
+    bool hasTextureCoordinates() const { return !cornerTexture.empty(); }
+
     Index vertexCount() const { return static_cast<Index>(positions.size()); }
     Index faceCount() const { return static_cast<Index>(offsets.size()) - 1; }
     std::span<const Index> face(Index f) const {

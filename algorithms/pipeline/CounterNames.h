@@ -485,5 +485,45 @@ inline constexpr CounterName kCuspRadialEndsPushed{"cusp-radial-ends-pushed",
 inline constexpr CounterName kCuspRadialEndsFlipsOfPushes{"cusp-radial-ends-flips-of-pushes",
                                                           "cusp radial ends: flips of pushes"};
 
+// Powell-Sabin method (contours/powell_sabin, Capouellez et al. 2023 §5).
+inline constexpr CounterName kComponents{"components", "components"};
+inline constexpr CounterName kGenus{"genus", "genus (sum over components)"};
+inline constexpr CounterName kCones{"cones", "cones"};
+inline constexpr CounterName kConeTrianglesSplit{"cone-triangles-split",
+                                                 "triangles split 1-to-4 around cones"};
+inline constexpr CounterName kConeTrianglesBisected{"cone-triangles-bisected",
+                                                    "neighbours split to conform"};
+inline constexpr CounterName kNewtonIterations{"newton-iterations", "Newton iterations"};
+inline constexpr CounterName kIntrinsicFlips{"intrinsic-flips", "intrinsic flips"};
+inline constexpr CounterName kMaxAngleSumError{"max-angle-sum-error",
+                                               "largest angle-sum error, free vertices (rad)"};
+inline constexpr CounterName kCutEdges{"cut-edges", "cut edges"};
+inline constexpr CounterName kLayoutAngleSumError{"layout-angle-sum-error",
+                                                  "largest uv angle-sum error (rad)"};
+inline constexpr CounterName kCutLengthMismatch{"cut-length-mismatch",
+                                                "largest cut-edge length mismatch (relative)"};
+inline constexpr CounterName kSideLengthError{"side-length-error",
+                                              "largest uv side-length error (relative)"};
+inline constexpr CounterName kFlippedUvTriangles{"flipped-uv-triangles", "flipped uv triangles"};
+inline constexpr CounterName kMinLogAreaRatio{"min-log-area-ratio",
+                                              "area distortion: smallest log(uv/3D area)"};
+inline constexpr CounterName kMaxLogAreaRatio{"max-log-area-ratio",
+                                              "area distortion: largest log(uv/3D area)"};
+inline constexpr CounterName kPatches{"patches", "quadratic patches"};
+inline constexpr CounterName kMacroPatches{"macro-patches", "macro-patches"};
+inline constexpr CounterName kQuadraticPrecisionError{
+    "quadratic-precision-error", "largest quadratic-precision error of a macro-patch"};
+inline constexpr CounterName kScalarDofs{"scalar-dofs", "DOFs per coordinate"};
+inline constexpr CounterName kHessianNonzeros{"hessian-nonzeros", "Hessian nonzeros"};
+inline constexpr CounterName kPreprocessingCached{"preprocessing-cached",
+                                                  "taken from the preprocessing cache"};
+inline constexpr CounterName kStageSeconds{"stage-seconds", "seconds of this stage's work"};
+inline constexpr CounterName kFitResidual{"fit-residual",
+                                          "backward error |Hq - b| / (|H| |q| + |b|)"};
+inline constexpr CounterName kFitMaxDistance{"fit-max-distance",
+                                             "max distance to the input vertices (/ bbox diagonal)"};
+inline constexpr CounterName kFitRmsDistance{"fit-rms-distance",
+                                             "RMS distance to the input vertices (/ bbox diagonal)"};
+
 } // namespace counters
 } // namespace contour

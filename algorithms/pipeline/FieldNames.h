@@ -64,4 +64,33 @@ inline constexpr const char* kCuspEdge = "cusp_edge";
 // wind against the domain's orientation).
 inline constexpr const char* kFolded = "folded";
 
+// Powell-Sabin method (contours/powell_sabin, Capouellez et al. 2023 §5).
+// Vertex, int: 1 at a cone of the flat metric (§5.1).
+inline constexpr const char* kCone = "cone";
+// Vertex, int: the cone cluster the vertex belongs to (-1 without cones).
+inline constexpr const char* kConeCluster = "cone_cluster";
+// Vertex, double: the conformal log scale factor u (l = e^((ui+uj)/2) l0).
+inline constexpr const char* kLogScale = "log_scale";
+// Vertex, double: 2 pi minus the angle sum in the flat metric (0 except at cones).
+inline constexpr const char* kAngleDefectFlat = "flat_angle_defect";
+// Face, Vec3 (u, v, 0): the uv of the face's corner 0, 1 and 2 in the layout.
+inline constexpr const char* kCornerUv0 = "corner_uv_0";
+inline constexpr const char* kCornerUv1 = "corner_uv_1";
+inline constexpr const char* kCornerUv2 = "corner_uv_2";
+// Edge, int: 1 on an edge of the cut to a disk.
+inline constexpr const char* kCutEdge = "cut_edge";
+// Face, double: log(uv area / 3D area) minus its value for the whole
+// layout: the layout's area distortion (0 where a face keeps the mean scale).
+inline constexpr const char* kLogAreaRatio = "log_area_ratio";
+// Face, int (spline tessellation): the quadratic patch 12 f + l the triangle lies in.
+inline constexpr const char* kPatch = "patch";
+// Face, int (spline tessellation): the macro-patch (layout face) it lies in.
+inline constexpr const char* kMacroPatch = "macro_patch";
+// Edge, int (spline tessellation): 1 patch boundary inside a macro-patch,
+// 2 macro-patch boundary (a layout edge), 3 a cut edge.
+inline constexpr const char* kPatchEdge = "patch_edge";
+// Vertex, double (spline tessellation): distance from the spline to the
+// input mesh's triangle at the same parameter.
+inline constexpr const char* kFitOffset = "fit_offset";
+
 } // namespace contour::fields

@@ -134,7 +134,9 @@ std::unique_ptr<Runner> runView(const BatchOptions& o, const Snapshot& input, co
             runner->step();
         } catch (const std::exception& e) {
             out.flush();
-            throw BatchFailure(view.prefix(": ") + e.what());
+            // The mesh is named: a phase may fail on what the mesh is (a
+            // conformal map it cannot have, say).
+            throw BatchFailure(o.meshPath + ": " + view.prefix(": ") + e.what());
         }
         const int done = runner->completedPhases();
         printPhase(out, method, runner->snapshot(done), runner->snapshot(done - 1));

@@ -7,6 +7,7 @@
 #include "Inspector.h"
 #include "MethodComparison.h"
 #include "MethodPanel.h"
+#include "ParameterDomainView.h"
 #include "PhaseStepper.h"
 #include "Resources.h"
 #include "SceneColors.h"
@@ -88,6 +89,14 @@ const std::array<OverlayInfo, kSceneOverlayCount> kOverlays{{
      "overlay-cusps"},
     {SceneOverlay::RadialEdges, "Radial edges",
      "Draw the radial edges p-r (Definition 5, §6.3) in charcoal", "overlay-radial-edges"},
+    {SceneOverlay::PatchEdges, "Patch boundaries",
+     "Draw the Powell-Sabin spline's patch boundaries (grey), macro-patch boundaries (the "
+     "layout's triangles, charcoal) and the cut through the cones (magenta), Capouellez et al. "
+     "2023 §5",
+     "overlay-patch-edges"},
+    {SceneOverlay::Cones, "Cones",
+     "Mark the cones of the flat metric (Capouellez et al. 2023 §5.1) with black dots",
+     "overlay-cones"},
 }};
 
 // The view-graph toggles; their icons (resources/icons/view-graph-*.svg) are
@@ -229,8 +238,12 @@ void MainWindow::createLayout() {
     splitter_ = new QSplitter(Qt::Horizontal, this);
     splitter_->addWidget(sceneView_);
     splitter_->addWidget(imageView_);
+    domainView_ = new ParameterDomainView(this);
+    domainView_->setVisible(false);
+    splitter_->addWidget(domainView_);
     splitter_->setStretchFactor(0, 1);
     splitter_->setStretchFactor(1, 1);
+    splitter_->setStretchFactor(2, 1);
     splitter_->setChildrenCollapsible(false);
     setCentralWidget(splitter_);
 
@@ -859,6 +872,8 @@ void MainWindow::showRunnerState() {
             sceneView_->clearScene();
             imageView_->clearScene();
         }
+        domainView_->clearScene();
+        domainView_->setVisible(false);
         stepper_->setSnapshots({});
         updateColorLegend();
         return;
@@ -867,6 +882,15 @@ void MainWindow::showRunnerState() {
     sceneView_->setAnalysisCamera(runner->camera());
     sceneView_->setSnapshot(snapshot);
     imageView_->setScene(snapshot, runner->camera());
+    domainView_->setSnapshot(snapshot);
+    if (domainView_->hasLayout() && domainView_->isHidden()) {
+        // Appearing: the three views share the width.
+        domainView_->setVisible(true);
+        const int third = std::max(1, splitter_->width() / 3);
+        splitter_->setSizes({third, third, third});
+    } else if (!domainView_->hasLayout()) {
+        domainView_->setVisible(false);
+    }
     stepper_->setSnapshots(runner->snapshots());
     // Facing appears with its phase without the selector's list changing.
     updateColorLegend();

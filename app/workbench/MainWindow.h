@@ -38,6 +38,7 @@ namespace contour {
 
 class GroundTruthComputation;
 class ImageView2D;
+class ParameterDomainView;
 class Inspector;
 class MethodComparison;
 class MethodPanel;
@@ -206,6 +207,7 @@ public:
     RunController* runController() const { return run_; }
     SceneView3D* sceneView() const { return sceneView_; }
     ImageView2D* imageView() const { return imageView_; }
+    ParameterDomainView* domainView() const { return domainView_; }
     PhaseStepper* phaseStepper() const { return stepper_; }
     MethodPanel* methodPanel() const { return methodPanel_; }
 
@@ -274,6 +276,8 @@ private:
     QComboBox* compareSelector_ = nullptr;
     SceneView3D* sceneView_ = nullptr;
     ImageView2D* imageView_ = nullptr;
+    // Shown beside the others while the snapshot has a uv layout.
+    ParameterDomainView* domainView_ = nullptr;
     MethodPanel* methodPanel_ = nullptr;
     PhaseStepper* stepper_ = nullptr;
     QSplitter* splitter_ = nullptr;

@@ -33,7 +33,7 @@ const char* const kKeepOrientationKey = "mesh/keepFileOrientation";
 // texts, which may change).
 const std::array<const char*, kSceneOverlayCount> kOverlayKeys{
     "overlay.inconsistent-faces", "overlay.radial-faces", "overlay.contour-vertices",
-    "overlay.cusps", "overlay.radial-edges"};
+    "overlay.cusps", "overlay.radial-edges", "overlay.patch-edges", "overlay.cones"};
 const std::array<const char*, MainWindow::kViewGraphToggleCount> kViewGraphKeys{
     "view-graph.hidden-curves", "view-graph.colour-by-qi", "view-graph.nodes",
     "view-graph.simplified-curves"};

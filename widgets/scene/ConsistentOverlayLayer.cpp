@@ -66,6 +66,32 @@ ConsistentOverlayLayer::ConsistentOverlayLayer() {
         property->LightingOff();
     }
     {
+        // Patch (1), macro-patch (2) and cut (3) edges, by cell label.
+        patchEdgeColors_->SetNumberOfTableValues(3);
+        patchEdgeColors_->SetTableRange(1.0, 3.0);
+        patchEdgeColors_->Build();
+        vtkStyle::setTableColor(patchEdgeColors_, 0, sceneColors::kPatchEdge);
+        vtkStyle::setTableColor(patchEdgeColors_, 1, sceneColors::kMacroPatchEdge);
+        vtkStyle::setTableColor(patchEdgeColors_, 2, sceneColors::kCutEdge);
+        Slot& edges = slot(SceneOverlay::PatchEdges);
+        edges.mapper->SetLookupTable(patchEdgeColors_);
+        edges.mapper->SetScalarModeToUseCellData();
+        edges.mapper->SetColorModeToMapScalars();
+        edges.mapper->UseLookupTableScalarRangeOn();
+        edges.mapper->ScalarVisibilityOn();
+        edges.mapper->SetRelativeCoincidentTopologyLineOffsetParameters(-2.0, -40.0);
+        vtkProperty* property = edges.actor->GetProperty();
+        property->SetLineWidth(static_cast<float>(sceneColors::kPatchEdgeWidth));
+        property->LightingOff();
+    }
+    {
+        vtkProperty* property = slot(SceneOverlay::Cones).actor->GetProperty();
+        setColor(property, sceneColors::kCone);
+        property->SetPointSize(static_cast<float>(sceneColors::kConeSize));
+        property->RenderPointsAsSpheresOn();
+        property->LightingOff();
+    }
+    {
         // Large squares: a different glyph from the C vertices' dots.
         vtkProperty* property = slot(SceneOverlay::Cusps).actor->GetProperty();
         setColor(property, sceneColors::kCuspVertex);
@@ -80,7 +106,9 @@ std::vector<SceneLayer::Prop> ConsistentOverlayLayer::props() const {
             {slot(SceneOverlay::RadialFaces).actor, false},
             {slot(SceneOverlay::RadialEdges).actor, false},
             {slot(SceneOverlay::ContourVertices).actor, false},
-            {slot(SceneOverlay::Cusps).actor, true}};
+            {slot(SceneOverlay::Cusps).actor, true},
+            {slot(SceneOverlay::PatchEdges).actor, false},
+            {slot(SceneOverlay::Cones).actor, true}};
 }
 
 void ConsistentOverlayLayer::update(const Snapshot& snapshot) {
@@ -94,6 +122,8 @@ void ConsistentOverlayLayer::update(const Snapshot& snapshot) {
         at(SceneOverlay::ContourVertices) = markedVerticesToPolyData(snapshot, fields::kLabel, 0);
         at(SceneOverlay::Cusps) = markedVerticesToPolyData(snapshot, fields::kCusp, 1);
         at(SceneOverlay::RadialEdges) = markedEdgesToPolyData(snapshot, fields::kRadialEdge);
+        at(SceneOverlay::PatchEdges) = labelledEdgesToPolyData(snapshot, fields::kPatchEdge);
+        at(SceneOverlay::Cones) = markedVerticesToPolyData(snapshot, fields::kCone, 1);
     }
     // The tint shares the mesh's points: shade it like the mesh.
     if (vtkPolyData* tint = at(SceneOverlay::RadialFaces))

@@ -5,8 +5,10 @@
 // translucent tints of radial and standard radial triangles (Definition 5,
 // §6.3), the contour (C) vertices (fields::kLabel == 0, §6.2), the cusps
 // (fields::kCusp, larger squares, drawn over everything) and the radial
-// edges (fields::kRadialEdge). An overlay is drawn when it is enabled and the
-// snapshot has its fields.
+// edges (fields::kRadialEdge); for the Powell-Sabin spline (Capouellez et
+// al. 2023 §5) the patch boundaries (fields::kPatchEdge: patch, macro-patch
+// and cut edges in three colours) and the cones (fields::kCone). An overlay
+// is drawn when it is enabled and the snapshot has its fields.
 #include "SceneLayer.h"
 
 #include <array>
@@ -21,8 +23,16 @@ class vtkPolyData;
 
 namespace contour {
 
-enum class SceneOverlay { InconsistentFaces, RadialFaces, ContourVertices, Cusps, RadialEdges };
-inline constexpr int kSceneOverlayCount = 5;
+enum class SceneOverlay {
+    InconsistentFaces,
+    RadialFaces,
+    ContourVertices,
+    Cusps,
+    RadialEdges,
+    PatchEdges,
+    Cones
+};
+inline constexpr int kSceneOverlayCount = 7;
 
 class ConsistentOverlayLayer : public SceneLayer {
 public:
@@ -67,6 +77,7 @@ private:
 
     std::array<Slot, kSceneOverlayCount> slots_;
     vtkNew<vtkLookupTable> radialColors_;
+    vtkNew<vtkLookupTable> patchEdgeColors_;
     vtkSmartPointer<vtkDataArray> normals_;
     bool motionDrawing_ = false;
 };

@@ -1,6 +1,7 @@
 #include "contours/common/SurfacePhase.h"
 
 #include "contours/common/VertexNormalCache.h"
+#include "core/SharedResultCache.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceFields.h"
@@ -8,8 +9,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <future>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <tbb/parallel_for.h>
@@ -88,44 +87,9 @@ struct CachedEntry {
 };
 
 CachedEntry cachedTessellation(const std::shared_ptr<const SmoothSurface>& surface, int level) {
-    struct Slot {
-        std::weak_ptr<const SmoothSurface> surface;
-        int level;
-        std::shared_future<std::shared_ptr<const TessellationEntry>> result;
-    };
-    constexpr size_t kCapacity = 4;
-    static std::mutex mutex;
-    static std::vector<Slot> slots;
-    const auto same = [&](const Slot& s) {
-        return s.level == level && !s.surface.owner_before(surface) &&
-               !surface.owner_before(s.surface);
-    };
-    std::promise<std::shared_ptr<const TessellationEntry>> promise;
-    std::shared_future<std::shared_ptr<const TessellationEntry>> existing;
-    {
-        const std::lock_guard lock(mutex);
-        std::erase_if(slots, [](const Slot& s) { return s.surface.expired(); });
-        for (const Slot& s : slots)
-            if (same(s))
-                existing = s.result;
-        if (!existing.valid()) {
-            if (slots.size() >= kCapacity)
-                slots.erase(slots.begin());
-            slots.push_back({surface, level, promise.get_future().share()});
-        }
-    }
-    if (existing.valid())
-        return {existing.get(), true};
-    try {
-        auto entry = buildEntry(surface, level);
-        promise.set_value(entry);
-        return {entry, false};
-    } catch (...) {
-        promise.set_exception(std::current_exception());
-        const std::lock_guard lock(mutex);
-        std::erase_if(slots, same);
-        throw;
-    }
+    static SharedResultCache<SmoothSurface, int, TessellationEntry> cache(4);
+    auto [entry, fromCache] = cache.get(surface, level, [&] { return buildEntry(surface, level); });
+    return {entry, fromCache};
 }
 
 void setMeshCounters(Snapshot& s) {

@@ -1,9 +1,10 @@
 // Wavefront OBJ: "v x y z [w ...]" and "f" lines whose corners are v, v/vt,
 // v//vn or v/vt/vn with 1-based indices, negative ones counting back from the
 // last vertex defined so far. Comments, line continuations ("\" at the end of
-// a line), texture coordinates, normals, groups, objects, smoothing groups,
-// materials and any other statement are skipped, except the subdivision tags
-// "t crease" and "t corner" (OpenSubdiv's syntax, see readTag()).
+// a line), normals, groups, objects, smoothing groups, materials and any
+// other statement are skipped, except the subdivision tags "t crease" and
+// "t corner" (OpenSubdiv's syntax, see readTag()) and the texture coordinates
+// "vt u v" with the faces' vt indices (kept when every corner has one).
 //
 // One pass over the bytes with std::from_chars, no tokens copied: a 1M-face
 // file parses in a fraction of a second.
@@ -125,14 +126,25 @@ public:
         return ec == std::errc::result_out_of_range ? meshio::IntParse::OutOfRange
                                                     : meshio::IntParse::Ok;
     }
-    // Skips "/vt", "//vn" or "/vt/vn" after a corner's vertex index.
-    bool skipCornerTail() {
+    // Reads "/vt", "//vn" or "/vt/vn" after a corner's vertex index; the
+    // texture index (1-based or negative, as written) goes to `texture`, 0
+    // when the corner names none.
+    bool readCornerTail(std::int64_t& texture) {
+        texture = 0;
         for (int slashes = 0; slashes < 2 && p_ < end_ && *p_ == '/'; ++slashes) {
             ++p_;
+            const char* first = p_;
             if (p_ < end_ && (*p_ == '-' || *p_ == '+'))
                 ++p_;
             while (p_ < end_ && isDigit(*p_))
                 ++p_;
+            if (slashes == 0 && p_ > first) {
+                std::int64_t value = 0;
+                const char* digits = *first == '+' ? first + 1 : first;
+                const auto [ptr, ec] = std::from_chars(digits, p_, value);
+                if (ec == std::errc() && ptr == p_)
+                    texture = value;
+            }
         }
         return atDelimiter();
     }
@@ -300,6 +312,8 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
     PolygonMesh mesh;
     std::vector<int> vertexLines, faceLines;
     std::vector<Index> corners;
+    std::vector<Vec2> textures;
+    std::vector<std::int64_t> cornerTextures; // per corner of mesh.indices, -1 for none
     TagLines tagLines;
     ObjCursor in(path, file.view());
 
@@ -335,7 +349,8 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
                 const char* start = in.position();
                 std::int64_t index = 0;
                 const auto parsed = in.parseInt(index);
-                if (parsed == meshio::IntParse::NotAnInteger || !in.skipCornerTail())
+                std::int64_t texture = 0;
+                if (parsed == meshio::IntParse::NotAnInteger || !in.readCornerTail(texture))
                     in.fail("face corner " + quoted(in.tokenAt(start)) +
                             " is not a vertex index (expected v, v/vt, v//vn or v/vt/vn)");
                 if (parsed == meshio::IntParse::OutOfRange || index > kMaxIndex)
@@ -353,16 +368,37 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
                     // May point forward; checked once the whole file is read.
                     corners.push_back(static_cast<Index>(index - 1));
                 }
+                // Texture indices are resolved once the file is read (they
+                // may point forward); negative ones count back from here.
+                const auto definedTextures = static_cast<std::int64_t>(textures.size());
+                cornerTextures.push_back(texture < 0 ? definedTextures + texture
+                                         : texture > 0 ? texture - 1
+                                                       : -1);
             }
             if (mesh.indices.size() + corners.size() > static_cast<size_t>(kMaxIndex))
                 in.fail("too many face corners (at most " + std::to_string(kMaxIndex) +
                         " in all are supported)");
             mesh.addFace(corners);
             faceLines.push_back(line);
+        } else if (keyword == "vt") {
+            double uv[2] = {0.0, 0.0};
+            int count = 0;
+            for (in.skipBlanks(); !in.atLineEnd(); in.skipBlanks(), ++count) {
+                double value = 0.0;
+                const char* start = in.position();
+                if (!in.parseDouble(value))
+                    in.fail("texture coordinate " + quoted(in.tokenAt(start)) +
+                            " is not a number");
+                if (count < 2)
+                    uv[count] = value;
+            }
+            if (count < 1)
+                in.fail("a texture coordinate needs at least 1 value");
+            textures.emplace_back(uv[0], uv[1]);
         } else if (keyword == "t") {
             readTag(in, mesh, tagLines);
         } else {
-            // vt, vn, vp, o, g, s, usemtl, mtllib, l, p and
+            // vn, vp, o, g, s, usemtl, mtllib, l, p and
             // other keywords carry nothing the workbench uses. Anything that
             // is not a keyword means this is not an OBJ file.
             bool isKeyword = isAlpha(keyword.front());
@@ -385,6 +421,16 @@ PolygonMesh readObj(const std::string& path, MeshSourceMap* source) {
                                     " is out of range (the file has " +
                                     std::to_string(vertexCount) + " vertices)");
     checkTags(path, mesh, tagLines);
+    // Texture coordinates are kept only when every corner names a valid one:
+    // a partial parameterization is of no use to the methods that read it.
+    bool everyCornerTextured = !textures.empty() && !cornerTextures.empty();
+    for (const std::int64_t t : cornerTextures)
+        everyCornerTextured =
+            everyCornerTextured && t >= 0 && t < static_cast<std::int64_t>(textures.size());
+    if (everyCornerTextured) {
+        mesh.textureCoordinates = std::move(textures);
+        mesh.cornerTexture.assign(cornerTextures.begin(), cornerTextures.end());
+    }
     if (source) {
         source->indexBase = 1;
         source->vertexLine = std::move(vertexLines);

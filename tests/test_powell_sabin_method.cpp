@@ -1,0 +1,258 @@
+// The Powell-Sabin method's phases up to the fitted surface (Capouellez et
+// al. 2023 §3, §5): every phase runs with its post-conditions met on closed
+// meshes of genus 0 and 1 and on spot, the preprocessing is cached across
+// cameras, the projective transform is exact, an orthographic fit does not
+// depend on the view, an OBJ's texture coordinates are read as the layout,
+// and a mesh the conformal map cannot handle gets a message.
+#include "ContourTestSupport.h"
+#include "contours/powell_sabin/ProjectiveTransform.h"
+#include "mesh/io/MeshReader.h"
+#include "pipeline/FieldNames.h"
+
+#include <QTemporaryDir>
+#include <QtTest>
+#include <fstream>
+
+using namespace contour;
+using namespace contour::testing;
+
+namespace {
+
+const std::vector<std::string> kPhases{"cones",   "conformal-map", "layout",
+                                       "patches", "factorization", "fit"};
+
+long long violations(const MethodRun& r) {
+    long long n = 0;
+    for (const Snapshot& s : r.snapshots)
+        n += s.invariantViolations();
+    return n;
+}
+
+std::string violationReport(const MethodRun& r) {
+    std::string text;
+    for (const Snapshot& s : r.snapshots)
+        for (const InvariantCheck& c : s.invariants)
+            if (c.violations > 0)
+                text += s.phaseName + ": " + c.name + " (" + std::to_string(c.violations) + ", " +
+                        c.firstExample + ")\n";
+    return text;
+}
+
+Camera viewOf(const PolygonMesh& mesh, const Vec3& direction, bool orthographic = false) {
+    Camera c = Camera::framing(mesh.boundingBox(), direction, Viewport{800, 600});
+    if (orthographic)
+        c.projection = Projection::Orthographic;
+    return c;
+}
+
+int countLabel(const Snapshot& s, const char* field, int value) {
+    const Field* f = s.field(field);
+    if (!f || !f->labels())
+        return -1;
+    return static_cast<int>(std::count(f->labels()->begin(), f->labels()->end(), value));
+}
+
+} // namespace
+
+class TestPowellSabinMethod : public QObject {
+    Q_OBJECT
+private slots:
+    void projectiveTransformIsExactAndInvertible() {
+        Camera c;
+        c.eye = Vec3(1.0, 2.0, 5.0);
+        c.target = Vec3(0.2, -0.1, 0.3);
+        const powell_sabin::ProjectiveTransform t(c);
+        QVERIFY(t.isPerspective());
+        const Vec3 p(0.3, -0.4, 0.7);
+        const Vec3 q = t.apply(p);
+        QVERIFY((t.invert(q) - p).norm() < 1e-12);
+        // The transformed point's x, y are the camera-space x/d, y/d (§3),
+        // so orthographic projection along z gives the perspective image.
+        const Vec3 d = p - c.eye;
+        QVERIFY(std::abs(q.x() - d.dot(c.right()) / d.dot(c.forward())) < 1e-12);
+        QVERIFY(std::abs(q.z() + 1.0 / d.dot(c.forward())) < 1e-12);
+        // The inverse's Jacobian against central differences.
+        const Eigen::Matrix3d j = t.inverseJacobian(q);
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 step = 1e-6 * Vec3::Unit(k);
+            const Vec3 fd = (t.invert(q + step) - t.invert(q - step)) / 2e-6;
+            QVERIFY2((fd - j.col(k)).norm() < 1e-6 * (1.0 + fd.norm()),
+                     qPrintable(QString("column %1").arg(k)));
+        }
+    }
+
+    void sphereRunsEveryPhaseWithItsChecks() {
+        const auto sphere = shape("sphere", 12);
+        const MethodRun r = run("powell-sabin", sphere, viewOf(*sphere, Vec3(0.3, 0.4, 1.0)));
+        QCOMPARE(static_cast<int>(r.snapshots.size()), static_cast<int>(kPhases.size()) + 1);
+        for (size_t i = 0; i < kPhases.size(); ++i)
+            QCOMPARE(QString::fromStdString(r.snapshots[i + 1].phaseName),
+                     QString::fromStdString(kPhases[i]));
+        QVERIFY2(violations(r) == 0, violationReport(r).c_str());
+        const Snapshot& cones = r.phase("cones");
+        QCOMPARE(cones.counter(counters::kGenus), 0.0);
+        QCOMPARE(cones.counter(counters::kCones), 8.0);
+        QCOMPARE(countLabel(cones, fields::kCone, 1), 8);
+        QVERIFY(cones.counter(counters::kConeTrianglesSplit) > 0.0);
+        const Snapshot& map = r.phase("conformal-map");
+        QVERIFY(map.counter(counters::kMaxAngleSumError) <= 1e-9);
+        const Snapshot& layout = r.phase("layout");
+        QCOMPARE(layout.counter(counters::kFlippedUvTriangles), 0.0);
+        QVERIFY(layout.counter(counters::kCutEdges) > 0.0);
+        QVERIFY(layout.field(fields::kCornerUv0) && layout.field(fields::kLogAreaRatio));
+        const Snapshot& patches = r.phase("patches");
+        QCOMPARE(patches.counter(counters::kPatches), 12.0 * layout.mesh->faceCount());
+        QVERIFY(patches.counter(counters::kQuadraticPrecisionError) < 1e-9);
+        const Snapshot& fit = r.last();
+        QVERIFY(fit.counter(counters::kFitResidual) < 1e-12);
+        // A fitted sphere stays close to its input (w = 1: 3.0 % of the
+        // diagonal at most, measured; the thin-plate term pulls the coarse
+        // mesh in a little).
+        QVERIFY2(fit.counter(counters::kFitMaxDistance) < 0.04,
+                 qPrintable(QString::number(fit.counter(counters::kFitMaxDistance))));
+        QCOMPARE(fit.counter(counters::kTessellationFaces),
+                 12.0 * 4.0 * layout.mesh->faceCount()); // level 2: 4 per patch
+        QVERIFY(fit.field(fields::kPatch) && fit.field(fields::kPatchEdge) &&
+                fit.field(fields::kFitOffset) && fit.field(fields::kVertexNormal));
+        QCOMPARE(countLabel(fit, fields::kCone, 1), 8);
+        QVERIFY(countLabel(fit, fields::kPatchEdge, 3) > 0); // the cut
+        QVERIFY(fit.viewGraph == nullptr);
+    }
+
+    void torusHasNoConesAndACut() {
+        const auto torus = shape("torus", 16);
+        const MethodRun r = run("powell-sabin", torus, viewOf(*torus, Vec3(0.2, 1.0, 0.6)));
+        QVERIFY2(violations(r) == 0, violationReport(r).c_str());
+        QCOMPARE(r.phase("cones").counter(counters::kGenus), 1.0);
+        QCOMPARE(r.phase("cones").counter(counters::kCones), 0.0);
+        QVERIFY(r.phase("layout").counter(counters::kCutEdges) > 0.0);
+        // A coarse torus (16 x 16): measured 5.7 % of the diagonal.
+        const double distance = r.last().counter(counters::kFitMaxDistance);
+        QVERIFY2(distance < 0.08, qPrintable(QString::number(distance)));
+    }
+
+    void spotRunsWithoutViolations() {
+        const auto spot = sampleOrShape("spot", 0);
+        const MethodRun r = run("powell-sabin", spot, viewOf(*spot, Vec3(1.0, 0.3, 0.5)));
+        QVERIFY2(violations(r) == 0, violationReport(r).c_str());
+        QCOMPARE(r.phase("cones").counter(counters::kCones), 8.0);
+        QCOMPARE(r.phase("layout").counter(counters::kFlippedUvTriangles), 0.0);
+        // The coarse cage's horns and ears lie where the conformal scale is
+        // smallest, so the thin-plate term is strongest there (measured 11 %).
+        const double distance = r.last().counter(counters::kFitMaxDistance);
+        QVERIFY2(distance < 0.15, qPrintable(QString::number(distance)));
+    }
+
+    void paperPresetKeepsTheUvThinPlate() {
+        // The paper's eq. 8 integrates the thin plate over uv; by default each
+        // face's term is measured in the surface's metric. The ellipsoid's
+        // conformal scale varies, so the two fits differ; both are C1 fits
+        // with their checks met.
+        const auto ellipsoid = shape("ellipsoid", 10);
+        const Camera camera = viewOf(*ellipsoid, Vec3(0.3, 0.2, 1.0));
+        const Method& m = *findMethod("powell-sabin");
+        const ParameterSet paper = presetValues(m.parameters, *m.preset("paper"));
+        QVERIFY(!paper.getBool("thin-plate-in-surface-metric"));
+        Runner r(m, makeInputSnapshot(ellipsoid), camera, paper);
+        r.runToEnd();
+        const MethodRun asWritten{r.snapshots()};
+        QVERIFY2(violations(asWritten) == 0, violationReport(asWritten).c_str());
+        const MethodRun byDefault = run("powell-sabin", ellipsoid, camera);
+        const double a = asWritten.last().counter(counters::kFitMaxDistance);
+        const double b = byDefault.last().counter(counters::kFitMaxDistance);
+        QVERIFY2(std::abs(a - b) > 1e-6 * std::max(a, b), qPrintable(QString("%1 %2").arg(a).arg(b)));
+    }
+
+    void aNewCameraReusesThePreprocessing() {
+        const auto sphere = shape("sphere", 10);
+        const MethodRun first = run("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1)));
+        const MethodRun second = run("powell-sabin", sphere, viewOf(*sphere, Vec3(1, 0.5, 0)));
+        for (const char* phase : {"cones", "conformal-map", "layout", "patches", "factorization"})
+            QVERIFY2(second.phase(phase).counter(counters::kPreprocessingCached) == 1.0, phase);
+        QCOMPARE(first.phase("factorization").counter(counters::kPreprocessingCached), 0.0);
+        // The perspective fits differ (the surface is view-dependent, §3).
+        const TriangleMesh& a = *first.last().mesh;
+        const TriangleMesh& b = *second.last().mesh;
+        QCOMPARE(a.vertexCount(), b.vertexCount());
+        double largest = 0.0;
+        for (Index v = 0; v < a.vertexCount(); ++v)
+            largest = std::max(largest, (a.position(v) - b.position(v)).norm());
+        QVERIFY(largest > 1e-6);
+    }
+
+    void orthographicFitDoesNotDependOnTheView() {
+        // The thin-plate energy and the fit are invariant under rotations, so
+        // two orthographic views give the same surface in world coordinates.
+        const auto sphere = shape("ellipsoid", 10);
+        const Snapshot a = runMethod("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1), true));
+        const Snapshot b =
+            runMethod("powell-sabin", sphere, viewOf(*sphere, Vec3(0.7, 0.2, -0.4), true));
+        double largest = 0.0;
+        for (Index v = 0; v < a.mesh->vertexCount(); ++v)
+            largest = std::max(largest, (a.mesh->position(v) - b.mesh->position(v)).norm());
+        QVERIFY2(largest < 1e-9, qPrintable(QString::number(largest)));
+    }
+
+    void textureCoordinatesAreTheLayout() {
+        // Write the computed layout as an OBJ with per-corner vt, read it back:
+        // the method takes its cones and cut from the texture coordinates.
+        const auto sphere = shape("sphere", 10);
+        const Camera camera = viewOf(*sphere, Vec3(0.2, 0.3, 1.0));
+        const MethodRun computed = run("powell-sabin", sphere, camera, {}, "layout");
+        const Snapshot& layout = computed.last();
+        QTemporaryDir dir;
+        const std::string path = dir.filePath("layout.obj").toStdString();
+        {
+            std::ofstream out(path);
+            out.precision(17);
+            for (const Vec3& p : layout.mesh->positions())
+                out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+            const std::array<const char*, 3> names{fields::kCornerUv0, fields::kCornerUv1,
+                                                   fields::kCornerUv2};
+            for (Index f = 0; f < layout.mesh->faceCount(); ++f)
+                for (const char* name : names) {
+                    const Vec3& uv = (*layout.field(name)->vectors())[f];
+                    out << "vt " << uv.x() << ' ' << uv.y() << '\n';
+                }
+            for (Index f = 0; f < layout.mesh->faceCount(); ++f) {
+                out << 'f';
+                for (int c = 0; c < 3; ++c)
+                    out << ' ' << layout.mesh->triangle(f)[c] + 1 << '/' << 3 * f + c + 1;
+                out << '\n';
+            }
+        }
+        auto loaded = std::make_shared<const PolygonMesh>(readMesh(path));
+        QVERIFY(loaded->hasTextureCoordinates());
+        const MethodRun fromUv = run("powell-sabin", loaded, camera);
+        QVERIFY2(violations(fromUv) == 0, violationReport(fromUv).c_str());
+        QCOMPARE(fromUv.phase("cones").counter(counters::kCones),
+                 computed.phase("cones").counter(counters::kCones));
+        QCOMPARE(fromUv.phase("layout").counter(counters::kCutEdges),
+                 layout.counter(counters::kCutEdges));
+        QCOMPARE(fromUv.phase("conformal-map").counter(counters::kNewtonIterations), 0.0);
+        bool said = false;
+        for (const std::string& note : fromUv.phase("conformal-map").notes)
+            said |= note.find("texture coordinates") != std::string::npos;
+        QVERIFY(said);
+        // Asking for texture coordinates on a mesh without them is an error.
+        QVERIFY_THROWS_EXCEPTION(std::exception,
+                                 run("powell-sabin", sphere, camera,
+                                     Overrides().set("parameterization", "texture-coordinates")));
+    }
+
+    void anUnmappableMeshSaysWhy() {
+        // No cones on a sphere: Gauss-Bonnet leaves no flat metric.
+        const auto sphere = shape("sphere", 8);
+        try {
+            run("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1)),
+                Overrides().set("cones-per-component", 0));
+            QFAIL("the conformal map of a sphere without cones succeeded");
+        } catch (const std::exception& e) {
+            const std::string what = e.what();
+            QVERIFY2(what.find("conformal map") != std::string::npos, what.c_str());
+        }
+    }
+};
+
+QTEST_GUILESS_MAIN(TestPowellSabinMethod)
+#include "test_powell_sabin_method.moc"
