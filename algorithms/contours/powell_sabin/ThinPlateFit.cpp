@@ -86,6 +86,14 @@ struct ThinPlateFit::Impl {
     std::vector<Eigen::Matrix2d> chartToCorner;
     Eigen::SparseMatrix<double> hs, hf;
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
+    // Per face, the Bezier ordinates as a function of the global values at
+    // slots(): ps12BezierMatrix * localMap, kept from the assembly so that a
+    // view's spline costs one small product per face (§5.3: everything but
+    // q0 is view-independent).
+    std::vector<Ps12Matrix> faceBasis;
+    // The view-independent part of every spline: the patches' domains and
+    // cone flags.
+    PowellSabinSpline patchLayout;
 
     // Global slot of local DOF k of face f, kInvalidIndex when eliminated.
     std::array<Index, kPs12LocalDofs> slots(Index f) const {
@@ -118,6 +126,7 @@ struct ThinPlateFit::Impl {
     void numberDofs();
     void buildCharts(const ThinPlateFitOptions& options, const std::vector<char>& cutEdge);
     void assemble(bool relativeAreaWeights, bool surfaceMetric);
+    void buildPatchLayout();
     void checkTargets(std::span<const Vec3> targets) const;
 };
 
@@ -214,6 +223,7 @@ void ThinPlateFit::Impl::buildCharts(const ThinPlateFitOptions& options,
 // eq. 8-9: E = 1/2 q^T H^s q + w/2 (q - q0)^T H^f (q - q0), so both Hessians
 // carry a factor 2 on the energy's quadratic forms.
 void ThinPlateFit::Impl::assemble(bool relativeAreaWeights, bool surfaceMetric) {
+    faceBasis.resize(static_cast<std::size_t>(mesh.faceCount()));
     std::vector<Eigen::Triplet<double>> ts, tf;
     ts.reserve(static_cast<std::size_t>(mesh.faceCount()) * kPs12LocalDofs * kPs12LocalDofs);
     std::vector<double> vertexArea(static_cast<std::size_t>(mesh.vertexCount()), 0.0);
@@ -251,6 +261,7 @@ void ThinPlateFit::Impl::assemble(bool relativeAreaWeights, bool surfaceMetric) 
             k.noalias() += area * dl.transpose() * wts.asDiagonal() * dl;
         }
         const Matrix12 lm = localMap(f);
+        faceBasis[static_cast<std::size_t>(f)] = b * lm;
         Matrix12 kg = 2.0 * metricWeight[f] * lm.transpose() * k * lm;
         kg = 0.5 * (kg + kg.transpose()).eval(); // exactly symmetric for CHOLMOD's one triangle
         const auto s = slots(f);
@@ -308,6 +319,31 @@ void ThinPlateFit::Impl::checkTargets(std::span<const Vec3> targets) const {
                                     " vertices");
 }
 
+void ThinPlateFit::Impl::buildPatchLayout() {
+    const Index nf = mesh.faceCount();
+    patchLayout.patches.resize(static_cast<std::size_t>(nf) * kPs12Patches);
+    patchLayout.conePatch.assign(patchLayout.patches.size(), 0);
+    for (Index f = 0; f < nf; ++f) {
+        const auto& uv = cornerUv[f];
+        const auto sub = ps12SubTriangles(uv);
+        const Triangle& t = mesh.triangle(f);
+        const double size =
+            (uv[1] - uv[0]).norm() + (uv[2] - uv[1]).norm() + (uv[0] - uv[2]).norm();
+        for (int l = 0; l < kPs12Patches; ++l) {
+            const std::size_t p = static_cast<std::size_t>(f) * kPs12Patches + l;
+            patchLayout.patches[p].domain = sub[l];
+            for (int i = 0; i < 3; ++i) {
+                if (!isCone[t[i]])
+                    continue;
+                // The split copies the corners; the margin only absorbs rounding.
+                for (const Vec2& d : sub[l])
+                    if ((d - uv[i]).norm() <= 1e-12 * size)
+                        patchLayout.conePatch[p] = 1;
+            }
+        }
+    }
+}
+
 ThinPlateFit::ThinPlateFit(const ConeLayout& layout, const ThinPlateFitOptions& options)
     : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
@@ -328,6 +364,7 @@ ThinPlateFit::ThinPlateFit(const ConeLayout& layout, const ThinPlateFitOptions& 
     m.numberDofs();
     m.buildCharts(options, layout.cutEdge);
     m.assemble(options.relativeAreaWeights, options.surfaceMetric);
+    m.buildPatchLayout();
 }
 
 ThinPlateFit::~ThinPlateFit() = default;
@@ -378,39 +415,21 @@ PowellSabinSpline ThinPlateFit::splineOf(const Eigen::MatrixX3d& dofs) const {
     if (dofs.rows() != m.dofs)
         throw std::invalid_argument("ThinPlateFit::splineOf: " + std::to_string(dofs.rows()) +
                                     " DOF rows, expected " + std::to_string(m.dofs));
-    PowellSabinSpline spline;
-    const Index nf = m.mesh.faceCount();
-    spline.patches.resize(static_cast<std::size_t>(nf) * kPs12Patches);
-    spline.conePatch.assign(spline.patches.size(), 0);
+    PowellSabinSpline spline = m.patchLayout;
     // Faces are independent: one task per range of faces.
-    tbb::parallel_for(Index(0), nf, [&](Index f) {
-        const auto& uv = m.cornerUv[f];
+    tbb::parallel_for(Index(0), m.mesh.faceCount(), [&](Index f) {
         const auto s = m.slots(f);
-        Eigen::Matrix<double, kPs12LocalDofs, 3> global =
-            Eigen::Matrix<double, kPs12LocalDofs, 3>::Zero();
+        Eigen::Matrix<double, kPs12LocalDofs, 3> global;
         for (int k = 0; k < kPs12LocalDofs; ++k)
-            if (s[k] != kInvalidIndex)
-                global.row(k) = dofs.row(s[k]);
+            global.row(k) = s[k] == kInvalidIndex ? Eigen::RowVector3d::Zero()
+                                                  : Eigen::RowVector3d(dofs.row(s[k]));
         const Eigen::Matrix<double, 6 * kPs12Patches, 3> control =
-            ps12BezierMatrix(uv) * (m.localMap(f) * global);
-        const auto sub = ps12SubTriangles(uv);
-        const Triangle& t = m.mesh.triangle(f);
-        const double size =
-            (uv[1] - uv[0]).norm() + (uv[2] - uv[1]).norm() + (uv[0] - uv[2]).norm();
+            m.faceBasis[static_cast<std::size_t>(f)] * global;
         for (int l = 0; l < kPs12Patches; ++l) {
-            const std::size_t p = static_cast<std::size_t>(f) * kPs12Patches + l;
-            QuadraticBezier<Vec3>& patch = spline.patches[p];
-            patch.domain = sub[l];
+            QuadraticBezier<Vec3>& patch =
+                spline.patches[static_cast<std::size_t>(f) * kPs12Patches + l];
             for (int c = 0; c < 6; ++c)
                 patch.control[c] = control.row(6 * l + c).transpose();
-            for (int i = 0; i < 3; ++i) {
-                if (!m.isCone[t[i]])
-                    continue;
-                // The split copies the corners; the margin only absorbs rounding.
-                for (const Vec2& d : sub[l])
-                    if ((d - uv[i]).norm() <= 1e-12 * size)
-                        spline.conePatch[p] = 1;
-            }
         }
     });
     return spline;
