@@ -610,14 +610,14 @@ private slots:
         const RunResult r = run({"--mesh", sphere_, "--method", "powell-sabin", "--svg",
                                  out + "/s.svg", "--json", out + "/s.json"});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
-        for (const char* phase :
-             {"cones", "conformal-map", "layout", "patches", "factorization", "fit"})
+        for (const char* phase : {"cones", "conformal-map", "layout", "patches", "factorization",
+                                  "fit", "patch-contours", "chaining", "cusps"})
             QVERIFY2(r.out.contains(QString::fromLatin1(phase)), phase);
         QVERIFY(r.out.contains(QStringLiteral("not computed yet")));
         QVERIFY(!r.out.contains(QStringLiteral("INVARIANT VIOLATED")));
         const nlohmann::json report = readJson(out + "/s.json");
         const auto& phases = report["views"][0]["phases"];
-        QCOMPARE(static_cast<int>(phases.size()), 6);
+        QCOMPARE(static_cast<int>(phases.size()), 9);
         QVERIFY(QFileInfo::exists(out + "/s.svg"));
         // --phase stops after the layout.
         const RunResult early = run({"--mesh", sphere_, "--method", "powell-sabin", "--phase", "3",

@@ -18,8 +18,9 @@ using namespace contour::testing;
 
 namespace {
 
-const std::vector<std::string> kPhases{"cones",   "conformal-map", "layout",
-                                       "patches", "factorization", "fit"};
+const std::vector<std::string> kPhases{"cones",          "conformal-map", "layout",
+                                       "patches",        "factorization", "fit",
+                                       "patch-contours", "chaining",      "cusps"};
 
 long long violations(const MethodRun& r) {
     long long n = 0;
@@ -103,7 +104,7 @@ private slots:
         const Snapshot& patches = r.phase("patches");
         QCOMPARE(patches.counter(counters::kPatches), 12.0 * layout.mesh->faceCount());
         QVERIFY(patches.counter(counters::kQuadraticPrecisionError) < 1e-9);
-        const Snapshot& fit = r.last();
+        const Snapshot& fit = r.phase("fit");
         QVERIFY(fit.counter(counters::kFitResidual) < 1e-12);
         // A fitted sphere stays close to its input (w = 1: 3.0 % of the
         // diagonal at most, measured; the thin-plate term pulls the coarse
@@ -117,6 +118,17 @@ private slots:
         QCOMPARE(countLabel(fit, fields::kCone, 1), 8);
         QVERIFY(countLabel(fit, fields::kPatchEdge, 3) > 0); // the cut
         QVERIFY(fit.viewGraph == nullptr);
+        // §4: the contour of a sphere is one loop (through cones, where the
+        // cone patches' lines cross, it is chained cone to cone), no cusps.
+        const Snapshot& chains = r.phase("chaining");
+        QCOMPARE(chains.counter(counters::kUnmatchedSegmentEnds), 0.0);
+        QVERIFY(chains.counter(counters::kContourLoops) +
+                    chains.counter(counters::kOpenContourChains) >=
+                1.0);
+        QVERIFY(chains.counter(counters::kContourSegments) > 0.0);
+        QCOMPARE(r.last().counter(counters::kInteriorCusps), 0.0);
+        QCOMPARE(r.last().counter(counters::kBoundaryCusps), 0.0);
+        QVERIFY(r.last().curves && !r.last().curves->empty());
     }
 
     void torusHasNoConesAndACut() {
@@ -126,6 +138,13 @@ private slots:
         QCOMPARE(r.phase("cones").counter(counters::kGenus), 1.0);
         QCOMPARE(r.phase("cones").counter(counters::kCones), 0.0);
         QVERIFY(r.phase("layout").counter(counters::kCutEdges) > 0.0);
+        // No cones: every chain is a closed loop.
+        QCOMPARE(r.phase("chaining").counter(counters::kOpenContourChains), 0.0);
+        QVERIFY(r.phase("chaining").counter(counters::kContourLoops) >= 1.0);
+        // Cusps come in pairs on a closed loop of a generic view.
+        const double cusps =
+            r.last().counter(counters::kInteriorCusps) + r.last().counter(counters::kBoundaryCusps);
+        QVERIFY2(std::fmod(cusps, 2.0) == 0.0, qPrintable(QString::number(cusps)));
         // A coarse torus (16 x 16): measured 5.7 % of the diagonal.
         const double distance = r.last().counter(counters::kFitMaxDistance);
         QVERIFY2(distance < 0.08, qPrintable(QString::number(distance)));
@@ -160,7 +179,8 @@ private slots:
         const MethodRun byDefault = run("powell-sabin", ellipsoid, camera);
         const double a = asWritten.last().counter(counters::kFitMaxDistance);
         const double b = byDefault.last().counter(counters::kFitMaxDistance);
-        QVERIFY2(std::abs(a - b) > 1e-6 * std::max(a, b), qPrintable(QString("%1 %2").arg(a).arg(b)));
+        QVERIFY2(std::abs(a - b) > 1e-6 * std::max(a, b),
+                 qPrintable(QString("%1 %2").arg(a).arg(b)));
     }
 
     void aNewCameraReusesThePreprocessing() {
@@ -184,9 +204,11 @@ private slots:
         // The thin-plate energy and the fit are invariant under rotations, so
         // two orthographic views give the same surface in world coordinates.
         const auto sphere = shape("ellipsoid", 10);
-        const Snapshot a = runMethod("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1), true));
+        const Snapshot a =
+            run("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1), true), {}, "fit").last();
         const Snapshot b =
-            runMethod("powell-sabin", sphere, viewOf(*sphere, Vec3(0.7, 0.2, -0.4), true));
+            run("powell-sabin", sphere, viewOf(*sphere, Vec3(0.7, 0.2, -0.4), true), {}, "fit")
+                .last();
         double largest = 0.0;
         for (Index v = 0; v < a.mesh->vertexCount(); ++v)
             largest = std::max(largest, (a.mesh->position(v) - b.mesh->position(v)).norm());

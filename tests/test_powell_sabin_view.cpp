@@ -6,6 +6,7 @@
 // overlays of the 3D view are there exactly when their fields are; a new
 // analysis camera re-runs the fit only (the preprocessing comes from the
 // cache). Needs a display: run under `xvfb-run -a -s "-screen 0 1600x1200x24"`.
+#include "ImageView2D.h"
 #include "MainWindow.h"
 #include "ParameterDomainView.h"
 #include "SceneView3D.h"
@@ -76,7 +77,7 @@ private slots:
         SceneView3D* scene = window_->sceneView();
         QVERIFY(domain && domain->isHidden());
         const int phases = window_->runner()->phaseCount();
-        QCOMPARE(phases, 6);
+        QCOMPARE(phases, 9);
         for (int phase = 0; phase < phases; ++phase) {
             window_->stepPhase();
             QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
@@ -110,8 +111,11 @@ private slots:
                 QVERIFY2(px.colored > px.total / 20, qPrintable(QString::number(px.colored)));
             }
         }
+        // The last phase keeps the fit's surface and fields; its curves are
+        // the chained contours, drawn in both views.
         const Snapshot& fit = window_->runner()->current();
-        QCOMPARE(QString::fromStdString(fit.phaseName), QStringLiteral("fit"));
+        QCOMPARE(QString::fromStdString(fit.phaseName), QStringLiteral("cusps"));
+        QVERIFY(window_->imageView()->curveCount() > 0);
         QCOMPARE(domain->colorField(), QString::fromLatin1(fields::kFitOffset));
         QCOMPARE(scene->overlayElementCount(SceneOverlay::PatchEdges),
                  countNonZero(fit.field(fields::kPatchEdge)));

@@ -27,8 +27,8 @@ const PlannedMethod* findPlannedMethod(const std::string& name);
 Method makeMeshContourMethod();
 Method makeInterpolatedContourMethod();
 Method makeConsistentContourMethod();
-// The fitted Powell-Sabin spline (Capouellez et al. 2023 §5); its contours
-// (§4) are not computed yet.
+// The fitted Powell-Sabin spline (Capouellez et al. 2023 §5) and its contour
+// conics, chains and cusps (§4); its visibility is not computed yet.
 Method makePowellSabinMethod();
 
 } // namespace contour

@@ -522,6 +522,22 @@ inline constexpr CounterName kFitResidual{"fit-residual",
                                           "backward error |Hq - b| / (|H| |q| + |b|)"};
 inline constexpr CounterName kFitMaxDistance{"fit-max-distance",
                                              "max distance to the input vertices (/ bbox diagonal)"};
+inline constexpr CounterName kPatchesWithContour{"patches-with-contour", "patches with a contour"};
+inline constexpr CounterName kEllipseSegments{"ellipse-segments", "segments on ellipses"};
+inline constexpr CounterName kHyperbolaSegments{"hyperbola-segments", "segments on hyperbolas"};
+inline constexpr CounterName kLineSegments{"line-segments",
+                                           "segments on lines (cone patches, cylinders)"};
+inline constexpr CounterName kParabolaSegments{"parabola-segments", "segments on parabolas"};
+inline constexpr CounterName kContourLoops{"contour-loops", "closed contour loops"};
+inline constexpr CounterName kOpenContourChains{"open-contour-chains",
+                                                "open chains (ending at cones or boundaries)"};
+inline constexpr CounterName kConeChainEnds{"cone-chain-ends", "chain ends at cones"};
+inline constexpr CounterName kUnmatchedSegmentEnds{"unmatched-segment-ends",
+                                                   "segment ends without a partner"};
+inline constexpr CounterName kInteriorCusps{"interior-cusps", "interior cusps (eq. 5-6)"};
+inline constexpr CounterName kBoundaryCusps{"boundary-cusps", "cusps on patch boundaries"};
+inline constexpr CounterName kDegenerateCuspPatches{"degenerate-cusp-patches",
+                                                    "patches with a non-generic cusp curve"};
 inline constexpr CounterName kFitRmsDistance{"fit-rms-distance",
                                              "RMS distance to the input vertices (/ bbox diagonal)"};
 

@@ -68,7 +68,8 @@ MeshFigures measure(const std::string& name, const std::filesystem::path& path, 
         const int n = std::min<int>(viewCount, static_cast<int>(views.size()));
         for (int v = 0; v < n; ++v) {
             Runner r(method, makeInputSnapshot(cage), views[v], parameters);
-            r.runToEnd();
+            while (r.current().phaseName != "fit" && r.step()) {
+            }
             const Snapshot& fit = r.current();
             const double seconds = fit.counter(counters::kStageSeconds);
             m.meanFit += seconds / n;

@@ -3,12 +3,18 @@
 // metric (§5.1), the cut and layout, the PS-12 macro-patches (§5.2) and the
 // thin-plate fit (§5.3) after the view's projective transform (§3). The
 // preprocessing phases are cached per cage and parameter values, so a new
-// camera re-runs only the fit. The contours of the fitted spline (§4) are
-// not computed yet: the method ends with the fitted surface and says so.
+// camera re-runs only the fit. Per view the spline's contour follows (§4.1:
+// conics per patch, chained across patches; §4.2: cusps); image-space
+// intersections and visibility are not computed yet, and the last phase
+// says so.
 #include "contours/Methods.h"
 #include "contours/powell_sabin/ConeLayout.h"
 #include "contours/powell_sabin/ConeSelection.h"
 #include "contours/powell_sabin/ConformalMap.h"
+#include "contours/powell_sabin/ContourChains.h"
+#include "contours/powell_sabin/PatchAdjacency.h"
+#include "contours/powell_sabin/PatchContour.h"
+#include "contours/powell_sabin/PatchCusps.h"
 #include "contours/powell_sabin/ProjectiveTransform.h"
 #include "contours/powell_sabin/Ps12Patch.h"
 #include "contours/powell_sabin/SplineTessellation.h"
@@ -16,13 +22,16 @@
 #include "core/SharedResultCache.h"
 #include "pipeline/FieldNames.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace contour {
 
@@ -314,7 +323,33 @@ std::shared_ptr<const FactorStage> factorStage(const PhaseContext& ctx, const Sn
 // need the input's triangulation, which the cone phase replaces.
 struct PowellSabinState : MethodState {
     std::shared_ptr<const TriangleMesh> triangulatedCage;
+    // Per view, from the fit on: the spline (in the view's transformed
+    // coordinates), its layout and tessellation level; then the contour
+    // segments, their chains and the cusps. A cache of what the fields came
+    // from: every phase can rebuild it by re-running the fit.
+    std::shared_ptr<const ConeLayout> layout;
+    std::shared_ptr<const PowellSabinSpline> spline;
+    int tessellationLevel = 0;
+    std::shared_ptr<const std::vector<ContourSegment>> segments;
+    std::shared_ptr<const PatchAdjacency> adjacency;
+    std::shared_ptr<const ContourChaining> chaining;
+    std::shared_ptr<const std::vector<PatchCusp>> cusps;
 };
+
+std::shared_ptr<PowellSabinState> copyState(const Snapshot& s) {
+    const auto state = std::dynamic_pointer_cast<const PowellSabinState>(s.methodState);
+    return state ? std::make_shared<PowellSabinState>(*state)
+                 : std::make_shared<PowellSabinState>();
+}
+
+// The per-view state of a phase after the fit, or an error naming what is
+// missing (the runner always hands the previous phase's snapshot).
+const PowellSabinState& viewState(const Snapshot& s) {
+    const auto* state = dynamic_cast<const PowellSabinState*>(s.methodState.get());
+    if (!state || !state->spline)
+        throw std::logic_error("the Powell-Sabin phases after the fit need the fit's spline");
+    return *state;
+}
 
 Snapshot stageInput(const Snapshot& s) {
     Snapshot input;
@@ -711,7 +746,8 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
     for (Index v = 0; v < layout.mesh.vertexCount(); ++v)
         targets[v] = transform.apply(layout.mesh.position(v));
     const Eigen::MatrixX3d dofs = fit.solveDofs(targets);
-    const PowellSabinSpline spline = fit.splineOf(dofs);
+    const auto splinePtr = std::make_shared<const PowellSabinSpline>(fit.splineOf(dofs));
+    const PowellSabinSpline& spline = *splinePtr;
     // What the paper's per-view fit does: the transform, the back-substitution
     // and the patches' Bezier points (the tessellation is for drawing only).
     const double fitSeconds = secondsSince(start);
@@ -746,8 +782,8 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
     toWorld.jacobian = [&transform](const Vec3& p) {
         return transform.inverseJacobian(p);
     };
-    SplineTessellation t =
-        tessellateSpline(spline, layout, ctx.parameters.getInt("tessellation-level"), toWorld);
+    const int level = ctx.parameters.getInt("tessellation-level");
+    SplineTessellation t = tessellateSpline(spline, layout, level, toWorld);
     std::vector<double> offset(t.mesh.vertexCount());
     std::vector<int> cone(t.mesh.vertexCount(), 0);
     for (Index v = 0; v < t.mesh.vertexCount(); ++v) {
@@ -799,12 +835,15 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kFitResidual, residual);
     s.setCounter(counters::kFitMaxDistance, diagonal > 0.0 ? worst / diagonal : 0.0);
     s.setCounter(counters::kFitRmsDistance, diagonal > 0.0 ? rms / diagonal : 0.0);
-    s.notes.push_back(std::string(transform.isPerspective()
-                                      ? "fitted after the projective transform [x/z, y/z, -1/z] "
-                                        "(§3): the surface drawn is that fit mapped back"
-                                      : "orthographic view: fitted in camera coordinates") +
-                      "; the spline's contours (§4) are not computed yet, so this method has "
-                      "no view graph");
+    auto state = copyState(s);
+    state->layout = layoutResult->layout;
+    state->spline = splinePtr;
+    state->tessellationLevel = level;
+    s.methodState = state;
+    s.notes.push_back(transform.isPerspective()
+                          ? "fitted after the projective transform [x/z, y/z, -1/z] (§3): the "
+                            "surface drawn is that fit mapped back"
+                          : "orthographic view: fitted in camera coordinates");
 }
 
 std::vector<InvariantCheck> checkFit(const PhaseContext&, const Snapshot& s) {
@@ -821,6 +860,252 @@ std::vector<InvariantCheck> checkFit(const PhaseContext&, const Snapshot& s) {
     return {residual, finite};
 }
 
+// ---- Per-view contours (§4) ------------------------------------------------------
+
+// The view direction after the projective transform (§3).
+const Vec3 kTau(0.0, 0.0, 1.0);
+
+// The triangle of the fit phase's tessellation that holds barycentric point
+// b of patch p (tessellateSpline's order: k^2 per patch, row by row, each
+// row's up and down triangles alternating).
+Index tessellationTriangle(Index patch, const Vec3& b, int k) {
+    const double x = std::clamp(b[1], 0.0, 1.0) * k, y = std::clamp(b[2], 0.0, 1.0) * k;
+    int j = std::min(static_cast<int>(y), k - 1);
+    int i = std::min(static_cast<int>(x), k - 1 - j);
+    const bool down = (x - i) + (y - j) > 1.0 && i + j + 1 < k;
+    Index index = 0;
+    for (int r = 0; r < j; ++r)
+        index += 2 * (k - r) - 1;
+    return patch * k * k + index + 2 * i + (down ? 1 : 0);
+}
+
+// World points of a contour segment, `samples` + 1 of them from t0 to t1,
+// with the tessellation triangle of each piece.
+void sampleSegment(const ContourSegment& segment, const PowellSabinSpline& spline,
+                   const ProjectiveTransform& transform, int level, int samples, bool reversed,
+                   Polyline& line) {
+    const QuadraticBezier<Vec3>& patch = spline.patches[segment.patch];
+    const auto pointAt = [&](double t) {
+        const Vec3 b = barycentricOf(patch.domain, segment.curve.at(t));
+        return std::pair{transform.invert(evaluate(patch, b)), b};
+    };
+    const bool first = line.points.empty();
+    for (int k = first ? 0 : 1; k <= samples; ++k) {
+        const double u = static_cast<double>(k) / samples;
+        const double t = reversed ? segment.t1 + u * (segment.t0 - segment.t1)
+                                  : segment.t0 + u * (segment.t1 - segment.t0);
+        CurvePoint point;
+        point.position = pointAt(t).first;
+        line.points.push_back(point);
+        if (k > 0) {
+            const double tMid = reversed
+                                    ? segment.t1 + (u - 0.5 / samples) * (segment.t0 - segment.t1)
+                                    : segment.t0 + (u - 0.5 / samples) * (segment.t1 - segment.t0);
+            line.segmentElement.push_back(
+                tessellationTriangle(segment.patch, pointAt(tMid).second, level));
+        }
+    }
+}
+
+constexpr int kSamplesPerSegment = 8;
+
+void runPatchContours(const PhaseContext& ctx, Snapshot& s) {
+    const PowellSabinState& view = viewState(s);
+    const PowellSabinSpline& spline = *view.spline;
+    const auto start = std::chrono::steady_clock::now();
+    const Index patches = static_cast<Index>(spline.patches.size());
+    std::vector<std::vector<ContourSegment>> perPatch(static_cast<size_t>(patches));
+    tbb::parallel_for(Index(0), patches, [&](Index p) {
+        perPatch[static_cast<size_t>(p)] = patchContours(spline.patches[p], p, kTau);
+    });
+    auto segments = std::make_shared<std::vector<ContourSegment>>();
+    long long withContour = 0;
+    std::map<ConicKind, long long> kinds;
+    for (auto& list : perPatch) {
+        withContour += !list.empty();
+        for (ContourSegment& segment : list) {
+            ++kinds[segment.kind];
+            segments->push_back(std::move(segment));
+        }
+    }
+    const double seconds = secondsSince(start);
+    ctx.checkCancelled();
+    // One curve per segment until they are chained.
+    const ProjectiveTransform transform(ctx.camera);
+    auto curves = std::make_shared<std::vector<Polyline>>();
+    for (const ContourSegment& segment : *segments) {
+        Polyline line;
+        line.type = CurveType::Contour;
+        line.source = SegmentSource::Face;
+        sampleSegment(segment, spline, transform, view.tessellationLevel, kSamplesPerSegment, false,
+                      line);
+        curves->push_back(std::move(line));
+    }
+    s.curves = curves;
+    auto state = copyState(s);
+    state->segments = segments;
+    s.methodState = state;
+    s.setCounter(counters::kContourSegments, static_cast<double>(segments->size()));
+    s.setCounter(counters::kPatchesWithContour, static_cast<double>(withContour));
+    s.setCounter(counters::kEllipseSegments, static_cast<double>(kinds[ConicKind::Ellipse]));
+    s.setCounter(counters::kHyperbolaSegments, static_cast<double>(kinds[ConicKind::Hyperbola]));
+    s.setCounter(counters::kLineSegments, static_cast<double>(kinds[ConicKind::IntersectingLines] +
+                                                              kinds[ConicKind::ParallelLines]));
+    s.setCounter(counters::kParabolaSegments, static_cast<double>(kinds[ConicKind::Parabola]));
+    s.setCounter(counters::kStageSeconds, seconds);
+}
+
+// eq. 2 on the segments themselves: tau . n vanishes along each (relative
+// to the patch's contour function), and each end lies in the patch.
+std::vector<InvariantCheck> checkPatchContours(const PhaseContext&, const Snapshot& s) {
+    const PowellSabinState& view = viewState(s);
+    InvariantCheck onContour{"tau . n vanishes along every contour segment (1e-8, relative)", 0,
+                             ""};
+    InvariantCheck inside{"every contour segment lies in its patch's domain", 0, ""};
+    for (size_t i = 0; i < view.segments->size(); ++i) {
+        const ContourSegment& segment = (*view.segments)[i];
+        const QuadraticBezier<Vec3>& patch = view.spline->patches[segment.patch];
+        const QuadraticForm2 f = contourFunction(patch, kTau);
+        const double scale = f.A.norm() * patch.domain[0].squaredNorm() +
+                             f.b.norm() * patch.domain[0].norm() + std::abs(f.c) + f.A.norm() +
+                             f.b.norm() + 1e-300;
+        for (int k = 0; k <= 4; ++k) {
+            const double t = segment.t0 + 0.25 * k * (segment.t1 - segment.t0);
+            const Vec2 r = segment.curve.at(t);
+            if (!(std::abs(f(r)) <= 1e-8 * scale) && onContour.violations++ == 0)
+                onContour.firstExample =
+                    "segment " + std::to_string(i) + " of patch " + std::to_string(segment.patch);
+            if (!(barycentricOf(patch.domain, r).minCoeff() >= -1e-6) && inside.violations++ == 0)
+                inside.firstExample = "segment " + std::to_string(i);
+        }
+    }
+    return {onContour, inside};
+}
+
+void runChaining(const PhaseContext& ctx, Snapshot& s) {
+    const PowellSabinState& view = viewState(s);
+    const auto start = std::chrono::steady_clock::now();
+    auto adjacency = std::make_shared<const PatchAdjacency>(*view.layout, *view.spline);
+    auto chaining = std::make_shared<const ContourChaining>(
+        chainContours(*view.segments, *adjacency, *view.spline));
+    const double seconds = secondsSince(start);
+    const ProjectiveTransform transform(ctx.camera);
+    auto curves = std::make_shared<std::vector<Polyline>>();
+    for (const ContourChain& chain : chaining->chains) {
+        Polyline line;
+        line.type = CurveType::Contour;
+        line.source = SegmentSource::Face;
+        line.closed = chain.closed;
+        for (const ChainLink& link : chain.links)
+            sampleSegment((*view.segments)[link.segment], *view.spline, transform,
+                          view.tessellationLevel, kSamplesPerSegment, link.reversed, line);
+        if (chain.closed && line.points.size() > 1) {
+            // The last point repeats the first: a closed polyline closes itself.
+            line.points.pop_back();
+        }
+        curves->push_back(std::move(line));
+    }
+    s.curves = curves;
+    auto state = copyState(s);
+    state->adjacency = adjacency;
+    state->chaining = chaining;
+    s.methodState = state;
+    s.setCounter(counters::kContourLoops, chaining->closedLoops);
+    s.setCounter(counters::kOpenContourChains, chaining->openChains);
+    s.setCounter(counters::kConeChainEnds, chaining->coneEnds);
+    s.setCounter(counters::kUnmatchedSegmentEnds, chaining->unmatchedEnds);
+    s.setCounter(counters::kStageSeconds, seconds);
+    if (chaining->coneEnds > 0)
+        s.notes.push_back(std::to_string(chaining->coneEnds) +
+                          " chain ends at cones: the contour passes through a cone point there, "
+                          "where several loops may meet (§4.2)");
+}
+
+std::vector<InvariantCheck> checkChaining(const PhaseContext&, const Snapshot& s) {
+    const PowellSabinState& view = viewState(s);
+    InvariantCheck matched{"every segment end meets another, a cone or the boundary", 0, ""};
+    matched.violations = view.chaining->unmatchedEnds;
+    matched.firstExample = view.chaining->firstUnmatched;
+    InvariantCheck once{"every segment is in exactly one chain", 0, ""};
+    std::vector<int> uses(view.segments->size(), 0);
+    for (const ContourChain& chain : view.chaining->chains)
+        for (const ChainLink& link : chain.links)
+            ++uses[static_cast<size_t>(link.segment)];
+    for (size_t i = 0; i < uses.size(); ++i)
+        if (uses[i] != 1 && once.violations++ == 0)
+            once.firstExample = "segment " + std::to_string(i);
+    return {matched, once};
+}
+
+void runCusps(const PhaseContext& ctx, Snapshot& s) {
+    const PowellSabinState& view = viewState(s);
+    const auto start = std::chrono::steady_clock::now();
+    // Only patches with a contour can hold a cusp.
+    std::vector<Index> patches;
+    for (const ContourSegment& segment : *view.segments)
+        if (patches.empty() || patches.back() != segment.patch)
+            patches.push_back(segment.patch);
+    std::vector<PatchCuspResult> found(patches.size());
+    tbb::parallel_for(size_t(0), patches.size(), [&](size_t i) {
+        found[i] = patchCusps(view.spline->patches[patches[i]], kTau);
+    });
+    auto cusps = std::make_shared<std::vector<PatchCusp>>();
+    long long degenerate = 0;
+    // A cusp on a side shared by two patches is found by both: one is kept
+    // (positions within 1e-9 of the patches' size apart).
+    const double merge = 1e-9 * view.layout->mesh.boundingBox().diagonal();
+    for (const PatchCuspResult& r : found) {
+        degenerate += r.degenerate;
+        for (const PatchCusp& cusp : r.cusps) {
+            bool seen = false;
+            for (const PatchCusp& kept : *cusps)
+                seen = seen || (kept.position - cusp.position).norm() <= merge;
+            if (!seen)
+                cusps->push_back(cusp);
+        }
+    }
+    // Boundary cusps (§4.2): at every join across a patch side, the sign
+    // test on the two segments' tangents.
+    long long boundary = 0;
+    for (const ContourChain& chain : view.chaining->chains)
+        for (size_t k = 0; k + 1 < chain.links.size() + (chain.closed ? 1 : 0); ++k) {
+            const ChainLink& a = chain.links[k];
+            const ChainLink& b = chain.links[(k + 1) % chain.links.size()];
+            const ContourSegment& sa = (*view.segments)[a.segment];
+            const ContourSegment& sb = (*view.segments)[b.segment];
+            if (sa.patch == sb.patch)
+                continue;
+            const double ta = a.reversed ? sa.t0 : sa.t1, tb = b.reversed ? sb.t1 : sb.t0;
+            const QuadraticBezier<Vec3>& pa = view.spline->patches[sa.patch];
+            const QuadraticBezier<Vec3>& pb = view.spline->patches[sb.patch];
+            const auto tangent = [](const QuadraticBezier<Vec3>& patch, const ContourSegment& seg,
+                                    double t, bool reversed) {
+                const Vec3 at = barycentricOf(patch.domain, seg.curve.at(t));
+                Vec3 du, dv;
+                uvDerivatives(patch, at, du, dv);
+                const Vec2 d = seg.curve.derivative(t) * (reversed ? -1.0 : 1.0);
+                return std::pair{Vec3(du * d.x() + dv * d.y()), Vec3(du.cross(dv))};
+            };
+            const auto [t1, n1] = tangent(pa, sa, ta, a.reversed);
+            const auto [t2, n2] = tangent(pb, sb, tb, b.reversed);
+            boundary += isBoundaryCusp(n1, t1, t2, kTau);
+        }
+    auto state = copyState(s);
+    state->cusps = cusps;
+    s.methodState = state;
+    s.setCounter(counters::kInteriorCusps, static_cast<double>(cusps->size()));
+    s.setCounter(counters::kBoundaryCusps, static_cast<double>(boundary));
+    s.setCounter(counters::kDegenerateCuspPatches, static_cast<double>(degenerate));
+    s.setCounter(counters::kStageSeconds, secondsSince(start));
+    ctx.checkCancelled();
+    s.notes.push_back("image-space intersections and visibility (§4.2) are not computed yet: "
+                      "the contours have no view graph");
+    if (degenerate > 0)
+        s.notes.push_back(std::to_string(degenerate) +
+                          " patches have a non-generic view (the contour's image tangent "
+                          "vanishes along a curve): their cusps are not listed");
+}
+
 } // namespace
 
 Method makePowellSabinMethod() {
@@ -828,13 +1113,12 @@ Method makePowellSabinMethod() {
     m.name = "powell-sabin";
     m.label = "Powell-Sabin contours (Capouellez et al. 2023)";
     m.description =
-        "A G1 piecewise-quadratic surface fitted to the mesh (Capouellez, Dai, Hertzmann & Zorin "
-        "2023 §5): cones and a discrete conformal map with cones, a cut and layout to uv, 12 "
-        "quadratic Powell-Sabin patches per triangle and a thin-plate fit, factored once per "
-        "mesh; per view the fit is solved after the projective transform (§3). Quads and "
-        "polygons are triangulated first (quads along the shorter diagonal, other polygons as a "
-        "fan). An OBJ whose texture coordinates carry a cone parameterization is used as it is. "
-        "The contours of the spline (§4) are not computed yet.";
+        "A G1 piecewise-quadratic surface fitted to the mesh (Capouellez et al. 2023 §5): cones, "
+        "a discrete conformal map, a cut and uv layout, 12 Powell-Sabin patches per triangle and "
+        "a thin-plate fit factored once per mesh, solved per view after the projective transform "
+        "(§3). Quads are split along the shorter diagonal, polygons as fans; an OBJ whose texture "
+        "coordinates are a cone parameterization is used as it is. Per view: each patch's contour "
+        "conic (§4.1), chains and cusps (§4.2); no visibility yet.";
     // Capouellez et al. 2023 as written: the parameters whose help says "not
     // in the paper" off.
     m.presets = {defaultPreset(),
@@ -952,6 +1236,19 @@ Method makePowellSabinMethod() {
                 "Per view: the projective transform of the vertices (§3), one back-substitution "
                 "per coordinate, the spline's patches and their tessellation.",
                 runFit, checkFit});
+    m.addPhase({"patch-contours",
+                "Per patch, tau . n = 0 as a conic in closed form (§4.1, Table 1 with the reading "
+                "notes' errata), parameterized rationally and trimmed to the patch.",
+                runPatchContours, checkPatchContours});
+    m.addPhase({"chaining",
+                "The segments joined across patch sides into loops; chains end at cone points, "
+                "where several loops may meet (§4.2).",
+                runChaining, checkChaining});
+    m.addPhase({"cusps",
+                "Interior cusps from eq. 5-6 (two conics, pencil method, cubic roots as companion "
+                "eigenvalues) and boundary cusps by the sign test at patch sides (§4.2).",
+                runCusps,
+                {}});
     return m;
 }
 

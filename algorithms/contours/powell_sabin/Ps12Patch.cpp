@@ -47,30 +47,20 @@ constexpr int prev(int i) {
     return (i + 2) % 3;
 }
 
-// Split point indices: V 0..2, M 3..5, Q 6..8, C 9.
-constexpr int kSplitPoints = 10;
+// Split point indices and sub-triangle corners: Ps12Patch.h.
+constexpr int kSplitPoints = kPs12SplitPoints;
 constexpr int vPoint(int i) {
-    return i;
+    return ps12CornerPoint(i);
 }
 constexpr int mPoint(int s) {
-    return 3 + s;
+    return ps12MidpointPoint(s);
 }
 constexpr int qPoint(int i) {
-    return 6 + i;
+    return ps12MedianPoint(i);
 }
-constexpr int kCPoint = 9;
-
+constexpr int kCPoint = kPs12CentroidPoint;
 using Corners = std::array<int, 3>;
-constexpr std::array<Corners, kPs12Patches> kSubTriangles = [] {
-    std::array<Corners, kPs12Patches> t{};
-    for (int i = 0; i < 3; ++i) {
-        t[2 * i] = {vPoint(i), mPoint(i), qPoint(i)};
-        t[2 * i + 1] = {vPoint(i), qPoint(i), mPoint(prev(i))};
-        t[6 + 2 * i] = {mPoint(i), qPoint(next(i)), kCPoint};
-        t[7 + 2 * i] = {qPoint(next(i)), mPoint(next(i)), kCPoint};
-    }
-    return t;
-}();
+constexpr const std::array<Corners, kPs12Patches>& kSubTriangles = ps12SubTriangleCorners;
 
 constexpr int valueDof(int i) {
     return 3 * i;

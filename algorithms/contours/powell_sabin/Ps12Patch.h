@@ -30,6 +30,34 @@ template <typename T> struct QuadraticBezier {
     std::array<T, 6> control;
 };
 
+// The split's points (docs/methods/powell-sabin-ps12.md): the corners V_i
+// (0..2), the side midpoints M_s (3..5), the medians' midpoints Q_i (6..8)
+// and the centroid C (9); sub-triangle l has the corners
+// ps12SubTriangleCorners[l]: 2i (V_i, M_i, Q_i), 2i+1 (V_i, Q_i, M_{i-1}),
+// 6+2i (M_i, Q_{i+1}, C), 7+2i (Q_{i+1}, M_{i+1}, C).
+inline constexpr int kPs12SplitPoints = 10;
+constexpr int ps12CornerPoint(int i) {
+    return i;
+}
+constexpr int ps12MidpointPoint(int s) {
+    return 3 + s;
+}
+constexpr int ps12MedianPoint(int i) {
+    return 6 + i;
+}
+inline constexpr int kPs12CentroidPoint = 9;
+inline constexpr std::array<std::array<int, 3>, kPs12Patches> ps12SubTriangleCorners = [] {
+    std::array<std::array<int, 3>, kPs12Patches> t{};
+    for (int i = 0; i < 3; ++i) {
+        const int n = (i + 1) % 3, p = (i + 2) % 3;
+        t[2 * i] = {ps12CornerPoint(i), ps12MidpointPoint(i), ps12MedianPoint(i)};
+        t[2 * i + 1] = {ps12CornerPoint(i), ps12MedianPoint(i), ps12MidpointPoint(p)};
+        t[6 + 2 * i] = {ps12MidpointPoint(i), ps12MedianPoint(n), kPs12CentroidPoint};
+        t[7 + 2 * i] = {ps12MedianPoint(n), ps12MidpointPoint(n), kPs12CentroidPoint};
+    }
+    return t;
+}();
+
 // The split: 12 sub-triangles of `uv`, each counter-clockwise. Sub-triangle
 // numbering is documented in Ps12Patch.cpp and stable. Both functions throw
 // std::invalid_argument for a clockwise, degenerate or non-finite `uv`.
