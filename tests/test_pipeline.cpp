@@ -160,7 +160,7 @@ private slots:
         QVERIFY(!findPlannedMethod("powell-sabin"));
         QCOMPARE(QString::fromStdString(ps->phases.front().name), QString("cones"));
         QVERIFY(ps->phaseIndex("fit") > 0);
-        QCOMPARE(QString::fromStdString(ps->phases.back().name), QString("cusps"));
+        QCOMPARE(QString::fromStdString(ps->phases.back().name), QString("visibility"));
         QVERIFY(validateParameters(ps->parameters, ParameterSet::defaults(ps->parameters)).empty());
         QVERIFY(findPlannedMethod("traced"));
         QVERIFY(!findMethod("traced"));

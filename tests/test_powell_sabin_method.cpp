@@ -18,9 +18,9 @@ using namespace contour::testing;
 
 namespace {
 
-const std::vector<std::string> kPhases{"cones",          "conformal-map", "layout",
-                                       "patches",        "factorization", "fit",
-                                       "patch-contours", "chaining",      "cusps"};
+const std::vector<std::string> kPhases{
+    "cones", "conformal-map",  "layout",   "patches", "factorization",
+    "fit",   "patch-contours", "chaining", "cusps",   "visibility"};
 
 long long violations(const MethodRun& r) {
     long long n = 0;
@@ -129,6 +129,15 @@ private slots:
         QCOMPARE(r.last().counter(counters::kInteriorCusps), 0.0);
         QCOMPARE(r.last().counter(counters::kBoundaryCusps), 0.0);
         QVERIFY(r.last().curves && !r.last().curves->empty());
+        // §4.2: a sphere's contour is visible everywhere, with no T-junction,
+        // fold or conflict.
+        const Snapshot& visibility = r.last();
+        QVERIFY(visibility.viewGraph);
+        QVERIFY(!visibility.viewGraph->chains.empty());
+        for (const ViewChain& chain : visibility.viewGraph->chains)
+            QCOMPARE(chain.qi, 0);
+        QCOMPARE(visibility.counter(counters::kTJunctions), 0.0);
+        QCOMPARE(visibility.counter(counters::kConflicts), 0.0);
     }
 
     void torusHasNoConesAndACut() {

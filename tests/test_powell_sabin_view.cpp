@@ -77,7 +77,7 @@ private slots:
         SceneView3D* scene = window_->sceneView();
         QVERIFY(domain && domain->isHidden());
         const int phases = window_->runner()->phaseCount();
-        QCOMPARE(phases, 9);
+        QCOMPARE(phases, 10);
         for (int phase = 0; phase < phases; ++phase) {
             window_->stepPhase();
             QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
@@ -114,7 +114,8 @@ private slots:
         // The last phase keeps the fit's surface and fields; its curves are
         // the chained contours, drawn in both views.
         const Snapshot& fit = window_->runner()->current();
-        QCOMPARE(QString::fromStdString(fit.phaseName), QStringLiteral("cusps"));
+        QCOMPARE(QString::fromStdString(fit.phaseName), QStringLiteral("visibility"));
+        QVERIFY(window_->imageView()->showsViewGraph());
         QVERIFY(window_->imageView()->curveCount() > 0);
         QCOMPARE(domain->colorField(), QString::fromLatin1(fields::kFitOffset));
         QCOMPARE(scene->overlayElementCount(SceneOverlay::PatchEdges),

@@ -1,0 +1,941 @@
+#include "contours/powell_sabin/SplineViewGraph.h"
+
+#include "visibility/ImageIntersections.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace contour::powell_sabin {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double cross2(const Vec2& a, const Vec2& b) {
+    return a.x() * b.y() - a.y() * b.x();
+}
+
+void checkOptions(const SplineViewGraphOptions& o) {
+    auto positive = [](double x) {
+        return std::isfinite(x) && x > 0.0;
+    };
+    auto nonNegative = [](double x) {
+        return std::isfinite(x) && x >= 0.0;
+    };
+    if (!positive(o.maxChordPixels))
+        throw std::invalid_argument("buildSplineViewGraph: maxChordPixels must be positive");
+    if (o.initialPiecesPerSegment < 1)
+        throw std::invalid_argument("buildSplineViewGraph: initialPiecesPerSegment must be >= 1");
+    if (o.maxBisectionDepth < 0 || o.maxBisectionDepth > 60)
+        throw std::invalid_argument("buildSplineViewGraph: maxBisectionDepth must be in 0..60");
+    if (!nonNegative(o.cuspOnSegmentTolerance))
+        throw std::invalid_argument(
+            "buildSplineViewGraph: cuspOnSegmentTolerance must be non-negative");
+    if (!nonNegative(o.nodeMergeParameter) || o.nodeMergeParameter >= 0.5)
+        throw std::invalid_argument("buildSplineViewGraph: nodeMergeParameter must be in [0, 0.5)");
+    if (o.crossingNewtonSteps < 0)
+        throw std::invalid_argument("buildSplineViewGraph: crossingNewtonSteps must be >= 0");
+    if (!nonNegative(o.coneCrossingPixels))
+        throw std::invalid_argument(
+            "buildSplineViewGraph: coneCrossingPixels must be non-negative");
+    if (!positive(o.gridCellsPerPatch))
+        throw std::invalid_argument("buildSplineViewGraph: gridCellsPerPatch must be positive");
+}
+
+// A point of a chain of the chaining at chain parameter s: link floor(s)
+// (the last link at s = L) at the fraction s - floor(s) of its traversal.
+struct ChainPoint {
+    Index segment = kInvalidIndex;
+    Index patch = kInvalidIndex;
+    double t = 0.0;
+    Vec2 uv = Vec2::Zero();
+    Vec3 barycentric = Vec3::Zero();
+    Vec3 p = Vec3::Zero(); // transformed
+    // d p / d s: the 3D tangent in the traversal direction (transformed).
+    Vec3 tangent = Vec3::Zero();
+    Vec2 domainDirection = Vec2::Zero(); // d r / d s
+};
+
+// A node's place on one polyline.
+struct Station {
+    double s = 0.0;
+    Index node = kInvalidIndex;
+};
+
+struct Polyline {
+    const ContourChain* chain = nullptr;
+    bool closed = false;
+    double length = 0.0; // number of links
+    // Sorted by s; for a closed chain s in [0, L) and the chords wrap.
+    std::vector<Station> stations;
+    std::vector<Vec3> p; // transformed
+    std::vector<Vec3> world;
+    std::vector<Vec2> pixel;
+    std::vector<double> cameraDepth;
+    std::vector<SplineSampleRef> ref;
+    std::vector<Index> chordPatch;
+    Index chordCount() const {
+        const Index n = static_cast<Index>(stations.size());
+        return closed ? n : n - 1;
+    }
+    Index next(Index i) const { return closed && i + 1 == Index(stations.size()) ? 0 : i + 1; }
+    double chordEndS(Index i) const {
+        return closed && i + 1 == Index(stations.size()) ? length : stations[next(i)].s;
+    }
+};
+
+class Builder {
+public:
+    Builder(const PowellSabinSpline& spline, std::span<const ContourSegment> segments,
+            const ContourChaining& chaining, const Camera& camera,
+            const ProjectiveTransform& transform, const SplineViewGraphOptions& options)
+        : spline_(spline), segments_(segments), chaining_(chaining), camera_(camera),
+          transform_(transform), o_(options) {}
+
+    SplineViewGraph run();
+
+private:
+    ChainPoint evaluate(const ContourChain& chain, double s) const;
+    // The point at fraction u of link k's traversal (u = 1: its end, which
+    // evaluate(k + 1) would take from the next link).
+    ChainPoint evaluateLink(const ContourChain& chain, Index k, double u) const;
+    Index addNode(ViewNodeType type);
+    void findCusps();
+    void sample();
+    void sampleLink(Index c, Index link, std::vector<Station>& out) const;
+    void evaluateStations(Polyline& poly) const;
+    void findCrossings();
+    void addEndNodes();
+    void cutChains();
+    void rayTests();
+    void checkRules();
+    void conflict(Index chain, int propagated, Index from, Index via, const std::string& reason);
+
+    const PowellSabinSpline& spline_;
+    std::span<const ContourSegment> segments_;
+    const ContourChaining& chaining_;
+    const Camera& camera_;
+    const ProjectiveTransform& transform_;
+    const SplineViewGraphOptions& o_;
+    const Vec3 tau_{0.0, 0.0, 1.0};
+
+    SplineViewGraph out_;
+    std::vector<Polyline> polys_;
+    // Nodes waiting to be placed on each polyline (cusps, then crossings).
+    std::vector<std::vector<Station>> pending_;
+    // Cusps: the far branch follows the node in the traversal direction.
+    std::map<Index, bool> farAfter_;
+    struct Crossing {
+        Index node = kInvalidIndex;
+        Index nearPoly = kInvalidIndex, farPoly = kInvalidIndex;
+        double nearS = 0.0, farS = 0.0;
+        bool occludedForward = false;
+    };
+    std::vector<Crossing> crossings_;
+    // Per node: (polyline, station index) of each place it lies on.
+    std::vector<std::vector<std::pair<Index, Index>>> places_;
+    // Per polyline, per station: the view chains before and after it.
+    std::vector<std::vector<Index>> before_, after_;
+};
+
+ChainPoint Builder::evaluate(const ContourChain& chain, double s) const {
+    const Index links = static_cast<Index>(chain.links.size());
+    const Index k = std::clamp(static_cast<Index>(std::floor(s)), Index(0), links - 1);
+    return evaluateLink(chain, k, std::clamp(s - k, 0.0, 1.0));
+}
+
+ChainPoint Builder::evaluateLink(const ContourChain& chain, Index k, double u) const {
+    const ChainLink& link = chain.links[k];
+    const ContourSegment& seg = segments_[link.segment];
+    ChainPoint c;
+    c.segment = link.segment;
+    c.patch = seg.patch;
+    const double span = seg.t1 - seg.t0;
+    c.t = link.reversed ? seg.t1 - u * span : seg.t0 + u * span;
+    c.uv = seg.curve.at(c.t);
+    const QuadraticBezier<Vec3>& patch = spline_.patches[seg.patch];
+    c.barycentric = barycentricOf(patch.domain, c.uv);
+    c.p = powell_sabin::evaluate(patch, c.barycentric);
+    Vec3 du, dv;
+    uvDerivatives(patch, c.barycentric, du, dv);
+    c.domainDirection = seg.curve.derivative(c.t) * (link.reversed ? -span : span);
+    c.tangent = du * c.domainDirection.x() + dv * c.domainDirection.y();
+    return c;
+}
+
+Index Builder::addNode(ViewNodeType type) {
+    ViewNode node;
+    node.type = type;
+    out_.graph.nodes.push_back(node);
+    return static_cast<Index>(out_.graph.nodes.size() - 1);
+}
+
+// §4.2: interior cusps from PatchCusps (eq. 5-6) placed on their segment,
+// and boundary cusps at the joins of links in different patches.
+void Builder::findCusps() {
+    // Where every segment lies in the chaining.
+    struct Place {
+        Index chain = kInvalidIndex;
+        Index link = kInvalidIndex;
+    };
+    std::vector<Place> place(segments_.size());
+    std::vector<std::vector<Index>> patchSegments(spline_.patches.size());
+    for (Index i = 0; i < static_cast<Index>(segments_.size()); ++i) {
+        const Index p = segments_[i].patch;
+        if (p < 0 || p >= static_cast<Index>(spline_.patches.size()))
+            throw std::invalid_argument("buildSplineViewGraph: segment " + std::to_string(i) +
+                                        " has patch " + std::to_string(p) + " outside the spline");
+        patchSegments[p].push_back(i);
+    }
+    for (Index c = 0; c < static_cast<Index>(chaining_.chains.size()); ++c) {
+        const ContourChain& chain = chaining_.chains[c];
+        if (chain.links.empty())
+            throw std::invalid_argument("buildSplineViewGraph: chain " + std::to_string(c) +
+                                        " has no links");
+        for (Index k = 0; k < static_cast<Index>(chain.links.size()); ++k) {
+            const Index seg = chain.links[k].segment;
+            if (seg < 0 || seg >= static_cast<Index>(segments_.size()))
+                throw std::invalid_argument("buildSplineViewGraph: chain " + std::to_string(c) +
+                                            " names segment " + std::to_string(seg) +
+                                            " outside the segments");
+            place[seg] = {c, k};
+        }
+    }
+
+    // A node at s on chain c, unless one is already within the merge distance
+    // (cyclically on a loop).
+    auto addStation = [&](Index c, double s, Index node) {
+        const Polyline& poly = polys_[c];
+        if (poly.closed && s >= poly.length)
+            s -= poly.length;
+        // A cusp at an open chain's end is at its cone or boundary point.
+        if (!poly.closed &&
+            (s <= o_.nodeMergeParameter || s >= poly.length - o_.nodeMergeParameter))
+            return false;
+        for (const Station& st : pending_[c]) {
+            double d = std::abs(st.s - s);
+            if (poly.closed)
+                d = std::min(d, poly.length - d);
+            if (d <= o_.nodeMergeParameter)
+                return false;
+        }
+        pending_[c].push_back({s, node});
+        return true;
+    };
+
+    for (Index p = 0; p < static_cast<Index>(spline_.patches.size()); ++p) {
+        if (patchSegments[p].empty())
+            continue;
+        const QuadraticBezier<Vec3>& patch = spline_.patches[p];
+        const PatchCuspResult found = patchCusps(patch, tau_, o_.cusp);
+        out_.stats.degenerateCuspPatches += found.degenerate;
+        double side = 0.0;
+        for (int i = 0; i < 3; ++i)
+            side = std::max(side, (patch.domain[(i + 1) % 3] - patch.domain[i]).norm());
+        for (const PatchCusp& cusp : found.cusps) {
+            // The closest point of every segment of the patch: a coarse scan,
+            // then golden-section refinement around the best sample.
+            Index bestSeg = kInvalidIndex;
+            double bestT = 0.0, bestD = std::numeric_limits<double>::infinity();
+            for (Index si : patchSegments[p]) {
+                const ContourSegment& seg = segments_[si];
+                auto dist = [&](double t) {
+                    return (seg.curve.at(t) - cusp.uv).squaredNorm();
+                };
+                constexpr int kScan = 64;
+                int best = 0;
+                double bd = std::numeric_limits<double>::infinity();
+                for (int j = 0; j <= kScan; ++j) {
+                    const double d = dist(seg.t0 + (seg.t1 - seg.t0) * j / kScan);
+                    if (d < bd) {
+                        bd = d;
+                        best = j;
+                    }
+                }
+                double a = seg.t0 + (seg.t1 - seg.t0) * std::max(0, best - 1) / kScan;
+                double b = seg.t0 + (seg.t1 - seg.t0) * std::min(kScan, best + 1) / kScan;
+                const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+                for (int it = 0; it < 80; ++it) {
+                    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+                    if (dist(x1) < dist(x2))
+                        b = x2;
+                    else
+                        a = x1;
+                }
+                const double t = 0.5 * (a + b);
+                const double d = std::sqrt(dist(t));
+                if (d < bestD) {
+                    bestD = d;
+                    bestT = t;
+                    bestSeg = si;
+                }
+            }
+            if (bestSeg == kInvalidIndex || bestD > o_.cuspOnSegmentTolerance * side) {
+                ++out_.stats.unplacedCusps;
+                continue;
+            }
+            const ContourSegment& seg = segments_[bestSeg];
+            const Place where = place[bestSeg];
+            if (where.chain == kInvalidIndex) {
+                ++out_.stats.unplacedCusps;
+                continue;
+            }
+            const ContourChain& chain = chaining_.chains[where.chain];
+            const bool reversed = chain.links[where.link].reversed;
+            const double u = (bestT - seg.t0) / (seg.t1 - seg.t0);
+            const double s = where.link + (reversed ? 1.0 - u : u);
+            const Index node = static_cast<Index>(out_.graph.nodes.size());
+            if (!addStation(where.chain, s, node))
+                continue; // the same cusp from the patch across a shared side
+            addNode(ViewNodeType::CurtainFold);
+            ViewNode& n = out_.graph.nodes[node];
+            n.smoothCusp = true;
+            n.qiStep = 1;
+            // PatchCusps.h: QI + 1 along T iff tau . t > 0; the traversal
+            // runs along T when its domain direction has a positive dot.
+            const Vec2 direction = seg.curve.derivative(bestT) * (reversed ? -1.0 : 1.0);
+            const bool alongT = direction.dot(cusp.domainTangent) > 0.0;
+            farAfter_[node] = alongT == cusp.qiIncreasesAlongDomainTangent;
+            ++out_.stats.interiorCusps;
+        }
+    }
+
+    // §4.2 patch-boundary cusps: the two tangents of a join on either side
+    // of the normal in the image.
+    for (Index c = 0; c < static_cast<Index>(chaining_.chains.size()); ++c) {
+        const ContourChain& chain = chaining_.chains[c];
+        const Index links = static_cast<Index>(chain.links.size());
+        for (Index k = chain.closed ? 0 : 1; k < links; ++k) {
+            const Index prev = (k + links - 1) % links;
+            const ContourSegment& a = segments_[chain.links[prev].segment];
+            const ContourSegment& b = segments_[chain.links[k].segment];
+            if (a.patch == b.patch)
+                continue; // an interior join: the curve is smooth there
+            const ChainPoint end = evaluateLink(chain, prev, 1.0);
+            const ChainPoint start = evaluateLink(chain, k, 0.0);
+            const Vec3 na = spline_.normal(end.patch, end.barycentric);
+            const Vec3 nb = spline_.normal(start.patch, start.barycentric);
+            if (na.norm() == 0.0 || nb.norm() == 0.0)
+                continue; // a cone: chains end there
+            const Vec3 n = na.normalized() + nb.normalized();
+            if (!isBoundaryCusp(n, end.tangent, start.tangent, tau_, o_.cusp))
+                continue;
+            const Index node = static_cast<Index>(out_.graph.nodes.size());
+            if (!addStation(c, static_cast<double>(k), node))
+                continue;
+            addNode(ViewNodeType::CurtainFold);
+            ViewNode& vn = out_.graph.nodes[node];
+            vn.smoothCusp = true;
+            vn.qiStep = 1;
+            // The far branch leaves the node away from the viewer (the limit
+            // of the interior rule when both tangents tend to tau).
+            const double zBefore = -end.tangent.normalized().dot(tau_);
+            const double zAfter = start.tangent.normalized().dot(tau_);
+            farAfter_[node] = zAfter > zBefore;
+            vn.unreliable = (zBefore > 0.0) == (zAfter > 0.0);
+            out_.stats.unreliableCusps += vn.unreliable;
+            ++out_.stats.boundaryCusps;
+        }
+    }
+}
+
+// Uniform pieces of link k and its nodes, then bisection until every chord
+// is within maxChordPixels of the curve at its parameter midpoint. Emits the
+// stations in [k, k + 1); the chain's last point (s = L) is added by the
+// caller for an open chain and is station 0 again for a loop.
+void Builder::sampleLink(Index c, Index link, std::vector<Station>& out) const {
+    const Polyline& poly = polys_[c];
+    std::vector<Station> fixed;
+    const int n = o_.initialPiecesPerSegment;
+    for (int i = 0; i < n; ++i)
+        fixed.push_back({link + static_cast<double>(i) / n, kInvalidIndex});
+    for (const Station& st : pending_[c]) {
+        if (st.s < link || st.s >= link + 1.0)
+            continue;
+        auto at =
+            std::find_if(fixed.begin(), fixed.end(), [&](const Station& f) { return f.s == st.s; });
+        if (at != fixed.end())
+            at->node = st.node;
+        else
+            fixed.push_back(st);
+    }
+    std::sort(fixed.begin(), fixed.end(),
+              [](const Station& a, const Station& b) { return a.s < b.s; });
+    fixed.push_back({link + 1.0, kInvalidIndex});
+    auto pixelAt = [&](double s) {
+        return camera_.project(transform_.invert(evaluate(*poly.chain, s).p)).pixel;
+    };
+    std::vector<Vec2> pix;
+    for (const Station& f : fixed)
+        pix.push_back(pixelAt(f.s));
+    struct Piece {
+        double a, b;
+        Vec2 pa, pb;
+        int depth;
+    };
+    for (size_t i = 0; i + 1 < fixed.size(); ++i) {
+        out.push_back(fixed[i]);
+        // Depth first, first half on top: the points come out in order.
+        std::vector<Piece> stack{{fixed[i].s, fixed[i + 1].s, pix[i], pix[i + 1], 0}};
+        while (!stack.empty()) {
+            const Piece piece = stack.back();
+            stack.pop_back();
+            const double m = 0.5 * (piece.a + piece.b);
+            const Vec2 pm = pixelAt(m);
+            const Vec2 d = piece.pb - piece.pa;
+            const double len2 = d.squaredNorm();
+            const double lambda =
+                len2 > 0.0 ? std::clamp((pm - piece.pa).dot(d) / len2, 0.0, 1.0) : 0.0;
+            const double error = (pm - (piece.pa + lambda * d)).norm();
+            if (error > o_.maxChordPixels && piece.depth < o_.maxBisectionDepth) {
+                stack.push_back({m, piece.b, pm, piece.pb, piece.depth + 1});
+                stack.push_back({piece.a, m, piece.pa, pm, piece.depth + 1});
+            } else if (piece.b != fixed[i + 1].s) {
+                out.push_back({piece.b, kInvalidIndex});
+            }
+        }
+    }
+}
+
+void Builder::evaluateStations(Polyline& poly) const {
+    const size_t n = poly.stations.size();
+    poly.p.resize(n);
+    poly.world.resize(n);
+    poly.pixel.resize(n);
+    poly.cameraDepth.resize(n);
+    poly.ref.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const ChainPoint c = evaluate(*poly.chain, poly.stations[i].s);
+        poly.p[i] = c.p;
+        poly.world[i] = transform_.invert(c.p);
+        const ProjectedPoint pp = camera_.project(poly.world[i]);
+        poly.pixel[i] = pp.pixel;
+        poly.cameraDepth[i] = pp.depth;
+        poly.ref[i] = {c.segment, c.t};
+    }
+    poly.chordPatch.resize(static_cast<size_t>(poly.chordCount()));
+    for (Index i = 0; i < poly.chordCount(); ++i) {
+        const Index links = static_cast<Index>(poly.chain->links.size());
+        const Index k =
+            std::clamp(static_cast<Index>(std::floor(poly.stations[i].s)), Index(0), links - 1);
+        poly.chordPatch[i] = segments_[poly.chain->links[k].segment].patch;
+    }
+}
+
+void Builder::sample() {
+    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+        Polyline& poly = polys_[c];
+        std::vector<Station> st;
+        for (Index k = 0; k < static_cast<Index>(poly.chain->links.size()); ++k)
+            sampleLink(c, k, st);
+        if (!poly.closed)
+            st.push_back({poly.length, kInvalidIndex});
+        poly.stations = std::move(st);
+        evaluateStations(poly);
+    }
+}
+
+// §4.2 image-space intersections, on the sampled chords (exact segment
+// tests): the nearer curve at the crossing passes in front.
+void Builder::findCrossings() {
+    std::vector<ImageSegment> chords;
+    std::vector<std::pair<Index, Index>> owner; // (polyline, chord)
+    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+        const Polyline& poly = polys_[c];
+        for (Index i = 0; i < poly.chordCount(); ++i) {
+            chords.push_back({poly.pixel[i], poly.pixel[poly.next(i)]});
+            owner.push_back({c, i});
+        }
+    }
+    // Nodes at the ends of a chord (several chains share cone nodes).
+    auto endNodes = [&](Index chord) {
+        const auto [c, i] = owner[chord];
+        const Polyline& poly = polys_[c];
+        return std::array<Index, 2>{poly.stations[i].node, poly.stations[poly.next(i)].node};
+    };
+    auto ignore = [&](Index a, Index b) {
+        const auto [ca, ia] = owner[a];
+        const auto [cb, ib] = owner[b];
+        if (ca == cb) {
+            const Polyline& poly = polys_[ca];
+            if (poly.next(ia) == ib || poly.next(ib) == ia)
+                return true;
+        }
+        // Chords from a common node meet only there (unless collinear).
+        for (Index x : endNodes(a))
+            for (Index y : endNodes(b))
+                if (x != kInvalidIndex && x == y)
+                    return true;
+        return false;
+    };
+    const ImageIntersectionResult found = imageIntersections(chords, ignore);
+    out_.stats.imageOverlaps = static_cast<Index>(found.overlaps.size());
+
+    auto chordS = [&](Index chord, const Vec2& point) {
+        const auto [c, i] = owner[chord];
+        const Polyline& poly = polys_[c];
+        const Vec2 a = poly.pixel[i], d = poly.pixel[poly.next(i)] - a;
+        const double len2 = d.squaredNorm();
+        const double lambda = len2 > 0.0 ? std::clamp((point - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+        const double s0 = poly.stations[i].s;
+        return s0 + lambda * (poly.chordEndS(i) - s0);
+    };
+    auto chordRange = [&](Index chord) {
+        const auto [c, i] = owner[chord];
+        return std::pair<double, double>{polys_[c].stations[i].s, polys_[c].chordEndS(i)};
+    };
+    // Cone points in the image (chain ends at Bifurcation nodes).
+    std::vector<Vec2> cones;
+    for (const Polyline& poly : polys_)
+        for (size_t e : {size_t(0), poly.stations.size() - 1})
+            if (!poly.closed && poly.stations[e].node != kInvalidIndex &&
+                out_.graph.nodes[poly.stations[e].node].type == ViewNodeType::Bifurcation)
+                cones.push_back(poly.pixel[e]);
+    std::vector<std::array<double, 4>> seen; // (polyline, s, polyline, s) of each crossing
+    for (const ImageCrossing& x : found.crossings) {
+        if (ignore(x.first, x.second))
+            continue;
+        // §4.2: the loops through a cone meet there at one surface point;
+        // a crossing next to it is that meeting, not an occlusion.
+        bool atCone = false;
+        for (const Vec2& c : cones)
+            atCone = atCone || (c - x.point).norm() <= o_.coneCrossingPixels;
+        if (atCone) {
+            ++out_.stats.coneCrossings;
+            continue;
+        }
+        const Index ca = owner[x.first].first, cb = owner[x.second].first;
+        double sa = chordS(x.first, x.point), sb = chordS(x.second, x.point);
+        Polyline& pa = polys_[ca];
+        Polyline& pb = polys_[cb];
+        // A crossing through a sample is reported by both chords there.
+        auto wrapped = [](const Polyline& poly, double v) {
+            return poly.closed && v >= poly.length ? v - poly.length : v;
+        };
+        const std::array<double, 4> key = {
+            double(std::min(ca, cb)), ca <= cb ? wrapped(pa, sa) : wrapped(pb, sb),
+            double(std::max(ca, cb)), ca <= cb ? wrapped(pb, sb) : wrapped(pa, sa)};
+        bool duplicate = false;
+        for (const std::array<double, 4>& old : seen)
+            duplicate = duplicate ||
+                        (old[0] == key[0] && old[2] == key[2] &&
+                         std::abs(old[1] - key[1]) <= 1e-12 && std::abs(old[3] - key[3]) <= 1e-12);
+        if (duplicate)
+            continue;
+        seen.push_back(key);
+        // The chords cross within the chord error of the curves: Newton on
+        // p_a(s_a).xy = p_b(s_b).xy (transformed xy is an affine image of
+        // the pixels) moves the node onto both curves, kept inside the two
+        // chords' parameter ranges.
+        const auto [la, ha] = chordRange(x.first);
+        const auto [lb, hb] = chordRange(x.second);
+        ChainPoint a = evaluate(*pa.chain, sa);
+        ChainPoint b = evaluate(*pb.chain, sb);
+        for (int it = 0; it < o_.crossingNewtonSteps; ++it) {
+            Eigen::Matrix2d jac;
+            jac << a.tangent.head<2>(), -b.tangent.head<2>();
+            const Vec2 step = jac.fullPivLu().solve(Vec2(b.p.head<2>() - a.p.head<2>()));
+            if (!step.allFinite())
+                break;
+            const double na = sa + step.x(), nb = sb + step.y();
+            if (na < la || na > ha || nb < lb || nb > hb)
+                break;
+            sa = na;
+            sb = nb;
+            a = evaluate(*pa.chain, sa);
+            b = evaluate(*pb.chain, sb);
+        }
+        sa = wrapped(pa, sa);
+        sb = wrapped(pb, sb);
+        const bool aNear = a.p.z() < b.p.z();
+        const ChainPoint& nearPt = aNear ? a : b;
+        const ChainPoint& farPt = aNear ? b : a;
+
+        // The side of the near contour the near surface folds to: along
+        // the tangent-plane preimage w of tau, p(r + h w) = p + h tau +
+        // h^2 / 2 D^2p[w, w] exactly on a quadratic patch.
+        const QuadraticBezier<Vec3>& patch = spline_.patches[nearPt.patch];
+        Vec3 du, dv, duu, duv, dvv;
+        uvDerivatives(patch, nearPt.barycentric, du, dv);
+        uvSecondDerivatives(patch, duu, duv, dvv);
+        Eigen::Matrix<double, 3, 2> J;
+        J << du, dv;
+        const Vec2 w = J.colPivHouseholderQr().solve(tau_);
+        const Vec3 fold = w.x() * w.x() * duu + 2.0 * w.x() * w.y() * duv + w.y() * w.y() * dvv;
+        const Vec2 nearTangent = nearPt.tangent.head<2>();
+        const Vec2 farTangent = farPt.tangent.head<2>();
+        const double sideFold = cross2(nearTangent, fold.head<2>());
+        const double sideFar = cross2(nearTangent, farTangent);
+
+        const Index node = addNode(ViewNodeType::ImageIntersection);
+        ViewNode& vn = out_.graph.nodes[node];
+        vn.qiStep = 2; // §4.2: contour over contour
+        vn.position = transform_.invert(farPt.p);
+        vn.nearPoint = transform_.invert(nearPt.p);
+        const double scale = nearTangent.norm() * fold.head<2>().norm();
+        vn.unreliable = !(std::abs(sideFold) > 1e-9 * scale) || sideFar == 0.0;
+        out_.stats.unreliableTJunctions += vn.unreliable;
+        Crossing cr;
+        cr.node = node;
+        cr.nearPoly = aNear ? ca : cb;
+        cr.farPoly = aNear ? cb : ca;
+        cr.nearS = aNear ? sa : sb;
+        cr.farS = aNear ? sb : sa;
+        cr.occludedForward = (sideFold > 0.0) == (sideFar > 0.0);
+        crossings_.push_back(cr);
+        pending_[cr.nearPoly].push_back({cr.nearS, node});
+        pending_[cr.farPoly].push_back({cr.farS, node});
+        ++out_.stats.tJunctions;
+    }
+    // Insert the crossing stations into the sampled polylines.
+    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+        Polyline& poly = polys_[c];
+        bool changed = false;
+        for (const Station& st : pending_[c]) {
+            if (out_.graph.nodes[st.node].type != ViewNodeType::ImageIntersection)
+                continue;
+            auto at = std::lower_bound(poly.stations.begin(), poly.stations.end(), st.s,
+                                       [](const Station& a, double s) { return a.s < s; });
+            if (at != poly.stations.end() && at->s == st.s && at->node == kInvalidIndex)
+                at->node = st.node;
+            else
+                poly.stations.insert(at, st);
+            changed = true;
+        }
+        if (changed)
+            evaluateStations(poly);
+    }
+}
+
+// Chain ends: cones (one node per cone point, shared by its chains), the
+// surface boundary, unmatched ends.
+void Builder::addEndNodes() {
+    std::map<Index, Index> coneNode;
+    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+        Polyline& poly = polys_[c];
+        if (poly.closed)
+            continue;
+        for (int e = 0; e < 2; ++e) {
+            const ChainEnd& end = e == 0 ? poly.chain->front : poly.chain->back;
+            Station& st = e == 0 ? poly.stations.front() : poly.stations.back();
+            if (st.node != kInvalidIndex)
+                throw std::logic_error("buildSplineViewGraph: a node at a chain end");
+            Index node = kInvalidIndex;
+            if (end.kind == ChainEndKind::Cone && end.node != kInvalidIndex) {
+                auto [it, fresh] = coneNode.emplace(end.node, kInvalidIndex);
+                if (fresh) {
+                    it->second = addNode(ViewNodeType::Bifurcation);
+                    ++out_.stats.conePoints;
+                }
+                node = it->second;
+            } else if (end.kind == ChainEndKind::Boundary && o_.boundaryCurves) {
+                node = addNode(ViewNodeType::ContourBoundaryJunction);
+                ++out_.stats.boundaryEnds;
+            } else {
+                node = addNode(ViewNodeType::CurveEnd);
+                if (end.kind == ChainEndKind::Boundary)
+                    ++out_.stats.boundaryEnds;
+                else
+                    ++out_.stats.curveEnds;
+            }
+            st.node = node;
+        }
+    }
+}
+
+// Every chain between two consecutive nodes of a polyline becomes a view
+// chain; a loop without a node is one closed chain.
+void Builder::cutChains() {
+    ViewGraph& g = out_.graph;
+    places_.assign(g.nodes.size(), {});
+    before_.assign(polys_.size(), {});
+    after_.assign(polys_.size(), {});
+    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+        Polyline& poly = polys_[c];
+        // Every chain needs an inner point for its ray: a midpoint between
+        // two adjacent nodes.
+        for (size_t i = 0; i < poly.stations.size(); ++i) {
+            const size_t j = static_cast<size_t>(poly.next(static_cast<Index>(i)));
+            if (j >= poly.stations.size() || (j == 0 && !poly.closed))
+                continue;
+            if (poly.stations[i].node != kInvalidIndex && poly.stations[j].node != kInvalidIndex &&
+                (poly.stations.size() > 1)) {
+                const double s0 = poly.stations[i].s;
+                const double s1 = poly.chordEndS(static_cast<Index>(i));
+                poly.stations.insert(poly.stations.begin() + static_cast<long>(i) + 1,
+                                     {0.5 * (s0 + s1), kInvalidIndex});
+                ++i;
+            }
+        }
+        evaluateStations(poly);
+        const Index n = static_cast<Index>(poly.stations.size());
+        before_[c].assign(static_cast<size_t>(n), kInvalidIndex);
+        after_[c].assign(static_cast<size_t>(n), kInvalidIndex);
+        std::vector<Index> nodeStations;
+        for (Index i = 0; i < n; ++i)
+            if (poly.stations[i].node != kInvalidIndex)
+                nodeStations.push_back(i);
+        auto emit = [&](Index from, Index count, bool closedLoop) {
+            ViewChain chain;
+            chain.type = CurveType::Contour;
+            chain.source = SegmentSource::Face;
+            chain.curve = c;
+            chain.closed = closedLoop;
+            std::vector<SplineSampleRef> refs;
+            for (Index k = 0; k < count; ++k) {
+                const Index i = (from + k) % n;
+                chain.points.push_back(poly.world[i]);
+                chain.image.push_back(poly.pixel[i]);
+                chain.depth.push_back(poly.cameraDepth[i]);
+                refs.push_back(poly.ref[i]);
+                if (k + 1 < count)
+                    chain.segmentElement.push_back(poly.chordPatch[i]);
+            }
+            for (size_t k = 1; k < chain.image.size(); ++k)
+                chain.lengthPixels += (chain.image[k] - chain.image[k - 1]).norm();
+            const Index id = static_cast<Index>(g.chains.size());
+            if (!closedLoop) {
+                const Index first = from, last = (from + count - 1) % n;
+                chain.startNode = poly.stations[first].node;
+                chain.endNode = poly.stations[last].node;
+                after_[c][first] = id;
+                before_[c][last] = id;
+                g.nodes[chain.startNode].chains.push_back(id);
+                g.nodes[chain.endNode].chains.push_back(id);
+            }
+            g.chains.push_back(std::move(chain));
+            out_.contourChain.push_back(c);
+            out_.samples.push_back(std::move(refs));
+        };
+        if (poly.closed && nodeStations.empty()) {
+            emit(0, n + 1, true);
+        } else if (poly.closed) {
+            for (size_t k = 0; k < nodeStations.size(); ++k) {
+                const Index a = nodeStations[k];
+                const Index b = nodeStations[(k + 1) % nodeStations.size()];
+                const Index count = (b - a + n) % n + 1 + (b == a ? n : 0);
+                emit(a, count, false);
+            }
+        } else {
+            for (size_t k = 0; k + 1 < nodeStations.size(); ++k)
+                emit(nodeStations[k], nodeStations[k + 1] - nodeStations[k] + 1, false);
+        }
+        for (Index i : nodeStations)
+            places_[poly.stations[i].node].push_back({c, i});
+    }
+    // Node positions: the place on the first polyline through it.
+    for (Index v = 0; v < static_cast<Index>(g.nodes.size()); ++v) {
+        ViewNode& node = g.nodes[v];
+        if (places_[v].empty())
+            throw std::logic_error("buildSplineViewGraph: a node on no chain");
+        const auto [c, i] = places_[v].front();
+        if (node.type != ViewNodeType::ImageIntersection)
+            node.position = polys_[c].world[i];
+        node.image = camera_.project(node.position).pixel;
+        if (node.type == ViewNodeType::CurtainFold) {
+            const bool farAfter = farAfter_.at(v);
+            const Index before = before_[c][i], after = after_[c][i];
+            node.nearChains = {farAfter ? before : after, kInvalidIndex};
+            node.farChains = {kInvalidIndex, farAfter ? after : before};
+        }
+    }
+    for (const Crossing& x : crossings_) {
+        ViewNode& node = g.nodes[x.node];
+        Index nearBefore = kInvalidIndex, nearAfter = kInvalidIndex;
+        Index farBefore = kInvalidIndex, farAfter = kInvalidIndex;
+        for (const auto& [c, i] : places_[x.node]) {
+            const double s = polys_[c].stations[i].s;
+            if (c == x.nearPoly && s == x.nearS && nearBefore == kInvalidIndex &&
+                nearAfter == kInvalidIndex) {
+                nearBefore = before_[c][i];
+                nearAfter = after_[c][i];
+            } else if (c == x.farPoly && s == x.farS) {
+                farBefore = before_[c][i];
+                farAfter = after_[c][i];
+            }
+        }
+        node.nearChains = {nearBefore, nearAfter};
+        node.farChains = x.occludedForward ? std::array<Index, 2>{farBefore, farAfter}
+                                           : std::array<Index, 2>{farAfter, farBefore};
+    }
+}
+
+// One ray per chain (§4.2), through the sample nearest half its image
+// length, against the patches of its grid cell.
+void Builder::rayTests() {
+    ViewGraph& g = out_.graph;
+    const Index patchCount = static_cast<Index>(spline_.patches.size());
+    Eigen::AlignedBox2d all;
+    std::vector<Eigen::AlignedBox2d> boxes(spline_.patches.size());
+    for (Index p = 0; p < patchCount; ++p) {
+        for (const Vec3& c : spline_.patches[p].control)
+            boxes[p].extend(c.head<2>());
+        all.extend(boxes[p]);
+    }
+    const Vec2 size = all.isEmpty() ? Vec2(1, 1) : Vec2(all.sizes().cwiseMax(1e-300));
+    const double cells = std::max(1.0, o_.gridCellsPerPatch * patchCount);
+    const int nx =
+        std::clamp(static_cast<int>(std::ceil(std::sqrt(cells * size.x() / size.y()))), 1, 4096);
+    const int ny = std::clamp(static_cast<int>(std::ceil(cells / nx)), 1, 4096);
+    std::vector<std::vector<Index>> grid(static_cast<size_t>(nx) * ny);
+    auto cellOf = [&](const Vec2& x, int& i, int& j) {
+        i = std::clamp(static_cast<int>(std::floor((x.x() - all.min().x()) / size.x() * nx)), 0,
+                       nx - 1);
+        j = std::clamp(static_cast<int>(std::floor((x.y() - all.min().y()) / size.y() * ny)), 0,
+                       ny - 1);
+    };
+    for (Index p = 0; p < patchCount; ++p) {
+        int i0, j0, i1, j1;
+        cellOf(boxes[p].min(), i0, j0);
+        cellOf(boxes[p].max(), i1, j1);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+                grid[static_cast<size_t>(j) * nx + i].push_back(p);
+    }
+    out_.raySample.assign(g.chains.size(), kInvalidIndex);
+    for (Index c = 0; c < static_cast<Index>(g.chains.size()); ++c) {
+        ViewChain& chain = g.chains[c];
+        const std::vector<Vec2>& im = chain.image;
+        const Index n = static_cast<Index>(im.size());
+        // Inner points only, when there are any.
+        Index best = n / 2;
+        double run = 0.0, bestGap = std::numeric_limits<double>::infinity();
+        for (Index i = 0; i < n; ++i) {
+            if (i > 0)
+                run += (im[i] - im[i - 1]).norm();
+            if (n > 2 && (i == 0 || i == n - 1))
+                continue;
+            const double gap = std::abs(run - 0.5 * chain.lengthPixels);
+            if (gap < bestGap) {
+                bestGap = gap;
+                best = i;
+            }
+        }
+        const SplineSampleRef& ref = out_.samples[c][best];
+        const ContourSegment& seg = segments_[ref.segment];
+        const QuadraticBezier<Vec3>& patch = spline_.patches[seg.patch];
+        const Vec3 p =
+            powell_sabin::evaluate(patch, barycentricOf(patch.domain, seg.curve.at(ref.t)));
+        int qi = 0;
+        if (all.contains(p.head<2>())) {
+            int i, j;
+            cellOf(p.head<2>(), i, j);
+            for (Index q : grid[static_cast<size_t>(j) * nx + i])
+                qi += hitsInFront(spline_.patches[q], tau_, p.head<2>(), p.z(), o_.ray);
+        }
+        ++g.rayTests;
+        chain.qi = qi;
+        chain.rayQi = qi;
+        chain.decidedBy = VisibilityRule::RayTest;
+        out_.raySample[c] = best;
+    }
+    out_.stats.rays = g.rayTests;
+}
+
+void Builder::conflict(Index chain, int propagated, Index from, Index via,
+                       const std::string& reason) {
+    ViewGraph& g = out_.graph;
+    ViewChain& c = g.chains[chain];
+    c.conflict = true;
+    VisibilityConflict x;
+    x.chain = chain;
+    x.propagatedQi = propagated;
+    x.rayQi = c.rayQi;
+    x.reason = reason;
+    x.fromChain = from;
+    x.viaNode = via;
+    const Index sample = out_.raySample[chain];
+    x.rayOrigin = sample != kInvalidIndex ? c.points[sample] : Vec3::Zero();
+    g.conflicts.push_back(std::move(x));
+}
+
+// The propagation rules of §4.2, checked against the rays (never applied).
+void Builder::checkRules() {
+    ViewGraph& g = out_.graph;
+    for (Index v = 0; v < static_cast<Index>(g.nodes.size()); ++v) {
+        const ViewNode& node = g.nodes[v];
+        if (node.type == ViewNodeType::CurtainFold) {
+            const Index nearC = node.nearChains[0], farC = node.farChains[1];
+            if (nearC == kInvalidIndex || farC == kInvalidIndex)
+                continue;
+            const int expected = g.chains[nearC].qi + node.qiStep;
+            if (g.chains[farC].qi != expected)
+                conflict(farC, expected, nearC, v, "cusp: far branch != near branch + 1");
+        } else if (node.type == ViewNodeType::ImageIntersection) {
+            const auto [n0, n1] = node.nearChains;
+            if (n0 != kInvalidIndex && n1 != kInvalidIndex && g.chains[n0].qi != g.chains[n1].qi)
+                conflict(n1, g.chains[n0].qi, n0, v, "T-junction: near curve changes QI");
+            const auto [f0, f1] = node.farChains;
+            if (f0 != kInvalidIndex && f1 != kInvalidIndex) {
+                const int expected = g.chains[f0].qi + node.qiStep;
+                if (g.chains[f1].qi != expected)
+                    conflict(f1, expected, f0, v, "T-junction: occluded far piece != far + 2");
+            }
+        }
+    }
+    out_.stats.conflicts = static_cast<Index>(g.conflicts.size());
+}
+
+SplineViewGraph Builder::run() {
+    const Clock::time_point start = Clock::now();
+    checkOptions(o_);
+    polys_.resize(chaining_.chains.size());
+    pending_.assign(chaining_.chains.size(), {});
+    for (size_t c = 0; c < chaining_.chains.size(); ++c) {
+        polys_[c].chain = &chaining_.chains[c];
+        polys_[c].closed = chaining_.chains[c].closed;
+        polys_[c].length = static_cast<double>(chaining_.chains[c].links.size());
+    }
+    out_.stats.contourChains = static_cast<Index>(chaining_.chains.size());
+
+    Clock::time_point t = Clock::now();
+    findCusps();
+    out_.stats.secondsCusps = secondsSince(t);
+    t = Clock::now();
+    sample();
+    out_.stats.secondsSampling = secondsSince(t);
+    addEndNodes();
+    t = Clock::now();
+    findCrossings();
+    out_.stats.secondsIntersections = secondsSince(t);
+    t = Clock::now();
+    cutChains();
+    out_.stats.secondsChains = secondsSince(t);
+    t = Clock::now();
+    rayTests();
+    out_.stats.secondsRays = secondsSince(t);
+    t = Clock::now();
+    checkRules();
+    out_.stats.secondsChecks = secondsSince(t);
+
+    out_.stats.chains = static_cast<Index>(out_.graph.chains.size());
+    for (const ViewChain& c : out_.graph.chains) {
+        out_.stats.loops += c.closed;
+        out_.stats.samples += static_cast<long long>(c.points.size());
+    }
+    out_.stats.secondsTotal = secondsSince(start);
+    return std::move(out_);
+}
+
+} // namespace
+
+SplineViewGraph buildSplineViewGraph(const PowellSabinSpline& spline,
+                                     std::span<const ContourSegment> segments,
+                                     const ContourChaining& chaining, const Camera& camera,
+                                     const ProjectiveTransform& transform,
+                                     const SplineViewGraphOptions& options) {
+    Builder builder(spline, segments, chaining, camera, transform, options);
+    return builder.run();
+}
+
+} // namespace contour::powell_sabin
