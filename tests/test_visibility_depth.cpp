@@ -4,7 +4,7 @@
 // (DepthBufferCheck.h says how, and why the comparison takes the farthest
 // depth of a 3×3 neighbourhood). On the 26 views of spot and bob the mesh
 // and consistent contours must agree on at least 99.5 % of the length the
-// graph calls visible (the figure), and, so that a graph hiding
+// graph calls visible (the product's target), and, so that a graph hiding
 // everything cannot pass, the drawing must cover at least 95 % of the
 // length the buffer sees. The interpolated contours' figures are reported,
 // not asserted (expected lower: interpolated contours cross faces, off the
@@ -292,7 +292,7 @@ private slots:
             QCOMPARE(all.undecided, 0.0);
             QVERIFY2(all.visibleAgreement() >= kRequiredVisibleAgreement,
                      qPrintable(describe(total)));
-            // A floor, not the target: a graph that hid everything
+            // A floor, not the visibility target: a graph that hid everything
             // would pass the line above. Of the length the buffer sees, the
             // drawing must show at least 95 % (counting hidden chains that
             // coincide with a visible one in the image, which the buffer
