@@ -331,7 +331,6 @@ struct PowellSabinState : MethodState {
     std::shared_ptr<const PowellSabinSpline> spline;
     int tessellationLevel = 0;
     std::shared_ptr<const std::vector<ContourSegment>> segments;
-    std::shared_ptr<const PatchAdjacency> adjacency;
     std::shared_ptr<const ContourChaining> chaining;
     std::shared_ptr<const std::vector<PatchCusp>> cusps;
 };
@@ -753,16 +752,7 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
     const double fitSeconds = secondsSince(start);
     ctx.checkCancelled();
 
-    // eq. 10's normwise backward error |Hq - b| / (|H| |q| + |b|): what a
-    // stable direct solve bounds by a small multiple of the rounding unit,
-    // whatever the conditioning of H (the conformal scale spreads its
-    // entries over orders of magnitude).
-    const Eigen::MatrixX3d q0 = fit.targetDofs(targets);
-    const Eigen::SparseMatrix<double> h =
-        fit.smoothingHessian() + fit.fittingWeight() * fit.fittingHessian();
-    const Eigen::MatrixX3d rhs = fit.fittingWeight() * (fit.fittingHessian() * q0);
-    const double residual =
-        (h * dofs - rhs).norm() / std::max(h.norm() * dofs.norm() + rhs.norm(), 1e-300);
+    const double residual = fit.backwardError(dofs, targets);
 
     // Distance of the spline's vertex values to the input vertices, in world units.
     const double diagonal = layout.mesh.boundingBox().diagonal();
@@ -864,20 +854,6 @@ std::vector<InvariantCheck> checkFit(const PhaseContext&, const Snapshot& s) {
 
 // The view direction after the projective transform (§3).
 const Vec3 kTau(0.0, 0.0, 1.0);
-
-// The triangle of the fit phase's tessellation that holds barycentric point
-// b of patch p (tessellateSpline's order: k^2 per patch, row by row, each
-// row's up and down triangles alternating).
-Index tessellationTriangle(Index patch, const Vec3& b, int k) {
-    const double x = std::clamp(b[1], 0.0, 1.0) * k, y = std::clamp(b[2], 0.0, 1.0) * k;
-    int j = std::min(static_cast<int>(y), k - 1);
-    int i = std::min(static_cast<int>(x), k - 1 - j);
-    const bool down = (x - i) + (y - j) > 1.0 && i + j + 1 < k;
-    Index index = 0;
-    for (int r = 0; r < j; ++r)
-        index += 2 * (k - r) - 1;
-    return patch * k * k + index + 2 * i + (down ? 1 : 0);
-}
 
 // World points of a contour segment, `samples` + 1 of them from t0 to t1,
 // with the tessellation triangle of each piece.
@@ -985,7 +961,11 @@ std::vector<InvariantCheck> checkPatchContours(const PhaseContext&, const Snapsh
 void runChaining(const PhaseContext& ctx, Snapshot& s) {
     const PowellSabinState& view = viewState(s);
     const auto start = std::chrono::steady_clock::now();
-    auto adjacency = std::make_shared<const PatchAdjacency>(*view.layout, *view.spline);
+    // The adjacency depends on the layout only: built once per layout.
+    const std::shared_ptr<const PatchAdjacency> adjacency =
+        cachedStage<PatchAdjacency>(s.cage, layoutKey(ctx.parameters) + " | adjacency", [&] {
+            return std::make_shared<const PatchAdjacency>(*view.layout, *view.spline);
+        }).first;
     auto chaining = std::make_shared<const ContourChaining>(
         chainContours(*view.segments, *adjacency, *view.spline));
     const double seconds = secondsSince(start);
@@ -1007,7 +987,6 @@ void runChaining(const PhaseContext& ctx, Snapshot& s) {
     }
     s.curves = curves;
     auto state = copyState(s);
-    state->adjacency = adjacency;
     state->chaining = chaining;
     s.methodState = state;
     s.setCounter(counters::kContourLoops, chaining->closedLoops);

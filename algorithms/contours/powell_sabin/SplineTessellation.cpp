@@ -1,5 +1,6 @@
 #include "contours/powell_sabin/SplineTessellation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -31,6 +32,17 @@ struct PointKeyHash {
 };
 
 } // namespace
+
+Index tessellationTriangle(Index patch, const Vec3& b, int k) {
+    const double x = std::clamp(b[1], 0.0, 1.0) * k, y = std::clamp(b[2], 0.0, 1.0) * k;
+    int j = std::min(static_cast<int>(y), k - 1);
+    int i = std::min(static_cast<int>(x), k - 1 - j);
+    const bool down = (x - i) + (y - j) > 1.0 && i + j + 1 < k;
+    Index index = 0;
+    for (int r = 0; r < j; ++r)
+        index += 2 * (k - r) - 1;
+    return patch * k * k + index + 2 * i + (down ? 1 : 0);
+}
 
 SplineTessellation tessellateSpline(const PowellSabinSpline& spline, const ConeLayout& layout,
                                     int level, const SplineToWorld& toWorld) {

@@ -32,6 +32,12 @@ struct SplineToWorld {
     std::function<Vec3(const Vec3&)> point;
     std::function<Eigen::Matrix3d(const Vec3&)> jacobian;
 };
+// The triangle of tessellateSpline(..., level) that holds the point at
+// barycentric coordinates `barycentric` of patch `patch` (its order: level^2
+// triangles per patch, row by row, each row's up and down triangles
+// alternating).
+Index tessellationTriangle(Index patch, const Vec3& barycentric, int level);
+
 SplineTessellation tessellateSpline(const PowellSabinSpline& spline, const ConeLayout& layout,
                                     int level, const SplineToWorld& toWorld = {});
 

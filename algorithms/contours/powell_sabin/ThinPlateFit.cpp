@@ -11,6 +11,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -85,6 +86,7 @@ struct ThinPlateFit::Impl {
     // to face f's uv (identity at cones, unused).
     std::vector<Eigen::Matrix2d> chartToCorner;
     Eigen::SparseMatrix<double> hs, hf;
+    double hessianNorm = 0.0; // |H|, Frobenius
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver;
     // Per face, the Bezier ordinates as a function of the global values at
     // slots(): ps12BezierMatrix * localMap, kept from the assembly so that a
@@ -303,6 +305,7 @@ void ThinPlateFit::Impl::assemble(bool relativeAreaWeights, bool surfaceMetric) 
     hf.resize(dofs, dofs);
     hf.setFromTriplets(tf.begin(), tf.end());
     const Eigen::SparseMatrix<double> h = hs + weight * hf;
+    hessianNorm = h.norm();
     solver.compute(h);
     if (solver.info() != Eigen::Success)
         throw std::runtime_error("ThinPlateFit: CHOLMOD could not factor H = H^s + w H^f (" +
@@ -391,6 +394,14 @@ const Eigen::SparseMatrix<double>& ThinPlateFit::fittingHessian() const {
 }
 double ThinPlateFit::fittingWeight() const {
     return impl_->weight;
+}
+
+double ThinPlateFit::backwardError(const Eigen::MatrixX3d& dofs,
+                                   std::span<const Vec3> targets) const {
+    const Impl& m = *impl_;
+    const Eigen::MatrixX3d rhs = m.weight * (m.hf * targetDofs(targets));
+    const Eigen::MatrixX3d residual = m.hs * dofs + m.weight * (m.hf * dofs) - rhs;
+    return residual.norm() / std::max(m.hessianNorm * dofs.norm() + rhs.norm(), 1e-300);
 }
 
 Eigen::MatrixX3d ThinPlateFit::targetDofs(std::span<const Vec3> targets) const {

@@ -80,6 +80,12 @@ public:
     // q0 of eq. 9 for `targets`: positions in the p slots, zeros elsewhere.
     Eigen::MatrixX3d targetDofs(std::span<const Vec3> targets) const;
     double fittingWeight() const;
+    // eq. 10's normwise backward error |Hq - b| / (|H| |q| + |b|), b = w H^f q0,
+    // of `dofs` for `targets`: what a stable direct solve bounds by a small
+    // multiple of the rounding unit whatever H's conditioning (the conformal
+    // scale spreads its entries over orders of magnitude). |H| (Frobenius)
+    // is kept from the factorization.
+    double backwardError(const Eigen::MatrixX3d& dofs, std::span<const Vec3> targets) const;
 
 private:
     struct Impl;
