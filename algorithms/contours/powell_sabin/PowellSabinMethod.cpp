@@ -14,6 +14,7 @@
 #include "contours/powell_sabin/PatchAdjacency.h"
 #include "contours/powell_sabin/PatchContour.h"
 #include "contours/powell_sabin/PatchCusps.h"
+#include "contours/powell_sabin/PowellSabinState.h"
 #include "contours/powell_sabin/ProjectiveTransform.h"
 #include "contours/powell_sabin/Ps12Patch.h"
 #include "contours/powell_sabin/SplineTessellation.h"
@@ -318,22 +319,6 @@ std::shared_ptr<const FactorStage> factorStage(const PhaseContext& ctx, const Sn
         *fromCache = cached;
     return stage;
 }
-
-// The runner hands each phase a copy of the previous snapshot; the stages
-// need the input's triangulation, which the cone phase replaces.
-struct PowellSabinState : MethodState {
-    std::shared_ptr<const TriangleMesh> triangulatedCage;
-    // Per view, from the fit on: the spline (in the view's transformed
-    // coordinates), its layout and tessellation level; then the contour
-    // segments, their chains and the cusps. A cache of what the fields came
-    // from: every phase can rebuild it by re-running the fit.
-    std::shared_ptr<const ConeLayout> layout;
-    std::shared_ptr<const PowellSabinSpline> spline;
-    int tessellationLevel = 0;
-    std::shared_ptr<const std::vector<ContourSegment>> segments;
-    std::shared_ptr<const ContourChaining> chaining;
-    std::shared_ptr<const std::vector<PatchCusp>> cusps;
-};
 
 std::shared_ptr<PowellSabinState> copyState(const Snapshot& s) {
     const auto state = std::dynamic_pointer_cast<const PowellSabinState>(s.methodState);
