@@ -5,12 +5,18 @@
 // cut's red and the distortion's colours); the Cones and Patch boundaries
 // overlays of the 3D view are there exactly when their fields are; a new
 // analysis camera re-runs the fit only (the preprocessing comes from the
-// cache). Needs a display: run under `xvfb-run -a -s "-screen 0 1600x1200x24"`.
+// cache). On spot at patch-contours, a click on a face of the spline shows
+// its patch in the inspector (describePatch's rows, with the segments'
+// conic case), and at visibility a chain's rows name the patches it
+// crosses. Needs a display: run under `xvfb-run -a -s "-screen 0 1600x1200x24"`.
 #include "ImageView2D.h"
+#include "Inspector.h"
 #include "MainWindow.h"
 #include "ParameterDomainView.h"
 #include "SceneView3D.h"
+#include "SelectionController.h"
 #include "SurfaceFormat.h"
+#include "contours/powell_sabin/PatchDescription.h"
 #include "pipeline/FieldNames.h"
 
 #include <QAction>
@@ -140,6 +146,107 @@ private slots:
             QVERIFY2(runner->snapshot(i).counter(counters::kPreprocessingCached) == 1.0,
                      runner->snapshot(i).phaseName.c_str());
         QVERIFY(window_->domainView()->isVisible());
+    }
+
+    // A click on a large front face whose patch holds a contour segment
+    // (the same path as a user's click: the scene view's picker, then the
+    // selection controller and the inspector).
+    void clickShowsThePatch() {
+        QVERIFY(
+            window_->openMesh(QStringLiteral(CONTOUR_SOURCE_DIR "/samples/spot_control_mesh.obj")));
+        QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+        QVERIFY(window_->setMethod(QStringLiteral("powell-sabin")));
+        QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+        window_->resetPhases();
+        while (window_->runner()->current().phaseName != "patch-contours" &&
+               !window_->runner()->atEnd()) {
+            window_->stepPhase();
+            QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+        }
+        QVERIFY2(window_->lastError().isEmpty(), qPrintable(window_->lastError()));
+        window_->resetViewToAnalysisCamera();
+        window_->selectionController()->clear();
+        const Snapshot s = window_->currentSnapshot();
+        QCOMPARE(QString::fromStdString(s.phaseName), QStringLiteral("patch-contours"));
+        const auto* state = powell_sabin::powellSabinState(s);
+        QVERIFY(state && state->segments && !state->segments->empty());
+        const std::vector<int>* patch = s.field(fields::kPatch)->labels();
+        QVERIFY(patch);
+        std::vector<char> hasContour(state->spline->patches.size(), 0);
+        for (const powell_sabin::ContourSegment& segment : *state->segments)
+            hasContour[static_cast<size_t>(segment.patch)] = 1;
+
+        // The candidates, largest on screen first.
+        SceneView3D* scene = window_->sceneView();
+        const Camera camera = scene->viewCamera();
+        const double ratio = scene->devicePixelRatioF();
+        std::vector<std::pair<double, Index>> candidates;
+        for (Index f = 0; f < s.mesh->faceCount(); ++f) {
+            if (!hasContour[static_cast<size_t>((*patch)[static_cast<size_t>(f)])])
+                continue;
+            std::array<Vec2, 3> q;
+            for (int i = 0; i < 3; ++i)
+                q[static_cast<size_t>(i)] =
+                    camera.project(s.mesh->position(s.mesh->triangle(f)[i])).pixel;
+            const Vec2 ab = q[1] - q[0], ac = q[2] - q[0];
+            candidates.emplace_back(-std::abs(ab.x() * ac.y() - ab.y() * ac.x()), f);
+        }
+        std::sort(candidates.begin(), candidates.end());
+        Index face = kInvalidIndex;
+        QPoint click;
+        for (size_t i = 0; i < std::min<size_t>(candidates.size(), 200) && face < 0; ++i) {
+            const Index f = candidates[i].second;
+            Vec2 c = Vec2::Zero();
+            for (int k = 0; k < 3; ++k)
+                c += camera.project(s.mesh->position(s.mesh->triangle(f)[k])).pixel / 3.0;
+            const QPoint at(static_cast<int>(std::lround(c.x() / ratio)),
+                            static_cast<int>(std::lround(c.y() / ratio)));
+            if (scene->pick(QPointF(at)) == Selection::face(f)) {
+                face = f;
+                click = at;
+            }
+        }
+        QVERIFY2(face != kInvalidIndex, "no face of a contour patch to click");
+        QTest::mouseClick(scene, Qt::LeftButton, Qt::NoModifier, click);
+        QCOMPARE(window_->selectionController()->selection(), Selection::face(face));
+
+        const Inspector* inspector = window_->inspector();
+        const Index p = (*patch)[static_cast<size_t>(face)];
+        QCOMPARE(inspector->value(QStringLiteral("face")), QString::number(face));
+        QCOMPARE(inspector->value(QStringLiteral("patch")), QString::number(p));
+        // Every row of describePatch, in order, under the "patch" heading.
+        const auto described = powell_sabin::describePatch(*state, p);
+        const std::vector<InspectorRow>& rows = inspector->rows();
+        const auto heading =
+            std::find_if(rows.begin(), rows.end(), [](const InspectorRow& r) { return r.heading; });
+        QVERIFY(heading != rows.end());
+        QCOMPARE(heading->property, QStringLiteral("patch"));
+        QCOMPARE(static_cast<size_t>(rows.end() - heading), described.size());
+        for (size_t i = 0; i < described.size(); ++i) {
+            QCOMPARE(heading[static_cast<std::ptrdiff_t>(i)].property,
+                     QString::fromStdString(described[i].first));
+            QCOMPARE(heading[static_cast<std::ptrdiff_t>(i)].value,
+                     QString::fromStdString(described[i].second));
+        }
+        // The conic case is the one of the patch's segments (Table 1).
+        QString kind;
+        for (const powell_sabin::ContourSegment& segment : *state->segments)
+            if (segment.patch == p && kind.isEmpty())
+                kind = QString::fromLatin1(toString(segment.kind));
+        QVERIFY(inspector->value(QStringLiteral("conic case")).startsWith(kind));
+        QVERIFY(!inspector->value(QStringLiteral("contour interval 1")).isEmpty());
+        QVERIFY(!inspector->value(QStringLiteral("τ·n: A")).isEmpty());
+
+        // At visibility, a chain's rows name the patches it crosses.
+        window_->runToEnd();
+        QVERIFY(window_->waitForIdle(kIdleTimeoutMs));
+        const Snapshot end = window_->currentSnapshot();
+        QVERIFY(end.viewGraph && !end.viewGraph->chains.empty());
+        window_->selectionController()->select(Selection::chain(0));
+        const QString crossed = inspector->value(QStringLiteral("patches"));
+        QCOMPARE(crossed, QString::fromStdString(
+                              powell_sabin::describeChainPatches(end.viewGraph->chains[0])));
+        QVERIFY2(!crossed.startsWith(QStringLiteral("0 ")), qPrintable(crossed));
     }
 
 private:

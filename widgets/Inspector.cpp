@@ -1,8 +1,10 @@
 #include "Inspector.h"
 
+#include "contours/powell_sabin/PatchDescription.h"
 #include "pipeline/FieldNames.h"
 
 #include <QComboBox>
+#include <QFont>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QIntValidator>
@@ -135,6 +137,15 @@ void faceRows(const Snapshot& s, Index f, const std::vector<std::string>& phases
                                                        : TriangleMesh::face(opposite));
     }
     rows.push_back({QStringLiteral("neighbours"), indexList(neighbours)});
+    // The spline's patch under the face (its tessellation's `patch` field).
+    const auto* state = powell_sabin::powellSabinState(s);
+    const auto* patch = fieldValues<int>(s, fields::kPatch, L::Face, nf);
+    if (state && state->spline && state->layout && patch) {
+        const auto described = powell_sabin::describePatch(*state, (*patch)[f]);
+        for (size_t i = 0; i < described.size(); ++i)
+            rows.push_back({QString::fromStdString(described[i].first),
+                            QString::fromStdString(described[i].second), i == 0});
+    }
 }
 
 void vertexRows(const Snapshot& s, Index v, const std::vector<std::string>& phases,
@@ -252,6 +263,9 @@ void chainRows(const Snapshot& s, Index c, std::vector<InspectorRow>& rows) {
     rows.push_back({QStringLiteral("closed"), yesNo(chain.closed)});
     rows.push_back({QStringLiteral("start node"), nodeName(graph, chain.startNode)});
     rows.push_back({QStringLiteral("end node"), nodeName(graph, chain.endNode)});
+    if (powell_sabin::powellSabinState(s))
+        rows.push_back({QStringLiteral("patches"),
+                        QString::fromStdString(powell_sabin::describeChainPatches(chain))});
 }
 
 } // namespace
@@ -341,10 +355,19 @@ void Inspector::showSelection(const Snapshot& snapshot, const Selection& selecti
         !fails.isEmpty() && fails != QStringLiteral("none"))
         title_->setText(title_->text() + QStringLiteral("<br>") +
                         tr("inconsistent: %1").arg(fails));
+    QTreeWidgetItem* group = nullptr;
     for (const InspectorRow& row : rows_) {
-        auto* item = new QTreeWidgetItem(table_, {row.property, row.value});
+        auto* item = group && !row.heading ? new QTreeWidgetItem(group, {row.property, row.value})
+                                           : new QTreeWidgetItem(table_, {row.property, row.value});
         item->setToolTip(1, row.value);
+        if (row.heading) {
+            QFont bold = item->font(0);
+            bold.setBold(true);
+            item->setFont(0, bold);
+            group = item;
+        }
     }
+    table_->expandAll();
     const int k = kind_->findData(static_cast<int>(shown_.kind));
     if (k >= 0)
         kind_->setCurrentIndex(k);

@@ -29,6 +29,9 @@ namespace contour {
 struct InspectorRow {
     QString property; // e.g. "VBO", "g", "QI"
     QString value;
+    // Starts a group: the rows after it, up to the next heading, are shown
+    // under it.
+    bool heading = false;
 };
 
 // The rows for `selection` in `snapshot` (empty when it does not exist).
@@ -36,13 +39,15 @@ struct InspectorRow {
 // be empty: the index alone is shown).
 //
 // Face: face, vertices, vertex labels, facing, VBO, consistent, fails,
-// radial, standard radial, folded, domain face, phase, neighbours.
+// radial, standard radial, folded, domain face, phase, neighbours; on the
+// powell-sabin spline, under the heading "patch", the rows of describePatch
+// (PatchDescription.h) for the face's patch.
 // Vertex: vertex, position, preimage, label, g, κr, provenance, phase, cusp,
 // normal offset, faces. Edge: edge, endpoints, faces, contour edge,
 // boundary, radial edge, cusp edge, zero crossing. Chain: chain, type,
 // source, points, length, QI, QI lower bound, ray QI, decided by,
 // ambiguous, conflict, concave, simplified away, closed, start node, end
-// node.
+// node; on powell-sabin, patches (the first patches the chain crosses).
 std::vector<InspectorRow> inspectorRows(const Snapshot& snapshot, const Selection& selection,
                                         const std::vector<std::string>& phaseNames);
 
