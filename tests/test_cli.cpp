@@ -633,6 +633,33 @@ private slots:
         QVERIFY2(bad.err.contains(QStringLiteral("conformal map failed")), qPrintable(bad.err));
     }
 
+    // --ply on powell-sabin writes the spline's tessellation with each
+    // triangle's quadratic patch and macro-patch as face properties.
+    void powellSabinPlyHasPatchIds() {
+        const QString out = freshOutputDir("powell-sabin-ply");
+        const RunResult r = run({"--mesh", sphere_, "--method", "powell-sabin", "--ply",
+                                 out + "/s.ply", "--json", out + "/s.json"});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        const nlohmann::json counters = readJson(out + "/s.json")["views"][0]["totals"]["counters"];
+        PlyLabels labels;
+        const PolygonMesh mesh = readMesh((out + "/s.ply").toStdString(), &labels);
+        QCOMPARE(mesh.faceCount(), counters["tessellation faces"].get<int>());
+        QVERIFY(labels.faceLabels.count(fields::kPatch) &&
+                labels.faceLabels.count(fields::kMacroPatch));
+        const std::vector<int>& patch = labels.faceLabels[fields::kPatch];
+        const std::vector<int>& macro = labels.faceLabels[fields::kMacroPatch];
+        const int patches = counters["quadratic patches"].get<int>();
+        std::vector<int> faces(static_cast<size_t>(patches), 0);
+        for (size_t f = 0; f < patch.size(); ++f) {
+            QVERIFY(patch[f] >= 0 && patch[f] < patches);
+            QCOMPARE(macro[f], patch[f] / 12); // patch 12 f + l of the 12-split
+            ++faces[static_cast<size_t>(patch[f])];
+        }
+        // Every patch is there, each with the same number of triangles.
+        QCOMPARE(std::count(faces.begin(), faces.end(), faces.front()), std::ptrdiff_t(patches));
+        QCOMPARE(faces.front() * patches, mesh.faceCount());
+    }
+
     void phaseStopsEarly_data() {
         QTest::addColumn<QString>("method");
         QTest::addColumn<int>("phases");
