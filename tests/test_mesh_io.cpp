@@ -3,10 +3,10 @@
 // the problem; the same mesh reads identically from every format; writers
 // round-trip exactly, PLY labels included.
 #include "mesh/MeshError.h"
-#include "mesh/io/MeshReader.h"
 #include "mesh/MeshValidation.h"
-#include "mesh/io/MeshWriter.h"
 #include "mesh/PolygonTriangulation.h"
+#include "mesh/io/MeshReader.h"
+#include "mesh/io/MeshWriter.h"
 
 #include <QDir>
 #include <QFile>
@@ -84,6 +84,20 @@ class TestMeshIo : public QObject {
     Q_OBJECT
 
 private slots:
+    void withPositionsKeepsTheConnectivity() {
+        const TriangleMesh mesh({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)},
+                                {{0, 1, 2}, {1, 3, 2}});
+        const TriangleMesh moved =
+            mesh.withPositions({Vec3(0, 0, 1), Vec3(2, 0, 1), Vec3(0, 2, 1), Vec3(2, 2, 1)});
+        QCOMPARE(moved.edgeCount(), mesh.edgeCount());
+        QCOMPARE(moved.boundaryEdgeCount(), mesh.boundaryEdgeCount());
+        for (Index h = 0; h < mesh.halfedgeCount(); ++h)
+            QCOMPARE(moved.opposite(h), mesh.opposite(h));
+        QCOMPARE(moved.position(3), Vec3(2, 2, 1));
+        QCOMPARE(mesh.position(3), Vec3(1, 1, 0));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, mesh.withPositions({Vec3::Zero()}));
+    }
+
     // A non-convex polygon (a U, first corner next to the notch): the fan
     // from corner 0 would cover the notch with reversed triangles; ear
     // clipping keeps every triangle's winding and the polygon's area.

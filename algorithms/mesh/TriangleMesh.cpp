@@ -15,6 +15,16 @@ struct DirectedEdge {
 };
 } // namespace
 
+TriangleMesh TriangleMesh::withPositions(std::vector<Vec3> positions) const {
+    if (positions.size() != positions_.size())
+        throw std::invalid_argument(
+            "TriangleMesh::withPositions: " + std::to_string(positions.size()) + " positions for " +
+            std::to_string(positions_.size()) + " vertices");
+    TriangleMesh out = *this;
+    out.positions_ = std::move(positions);
+    return out;
+}
+
 TriangleMesh::TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
                            std::vector<Index> sourcePolygon)
     : positions_(std::move(positions)), triangles_(std::move(triangles)),

@@ -22,6 +22,11 @@ public:
     TriangleMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
                  std::vector<Index> sourcePolygon = {});
 
+    // The same connectivity with other vertex positions (one per vertex),
+    // without rebuilding the half-edges: a surface re-evaluated per view.
+    // Throws std::invalid_argument when the count differs.
+    TriangleMesh withPositions(std::vector<Vec3> positions) const;
+
     Index vertexCount() const { return static_cast<Index>(positions_.size()); }
     Index faceCount() const { return static_cast<Index>(triangles_.size()); }
     Index halfedgeCount() const { return 3 * faceCount(); }

@@ -520,8 +520,8 @@ inline constexpr CounterName kPreprocessingCached{"preprocessing-cached",
 inline constexpr CounterName kStageSeconds{"stage-seconds", "seconds of this stage's work"};
 inline constexpr CounterName kFitResidual{"fit-residual",
                                           "backward error |Hq - b| / (|H| |q| + |b|)"};
-inline constexpr CounterName kFitMaxDistance{"fit-max-distance",
-                                             "max distance to the input vertices (/ bbox diagonal)"};
+inline constexpr CounterName kFitMaxDistance{
+    "fit-max-distance", "max distance to the input vertices (/ bbox diagonal)"};
 inline constexpr CounterName kPatchesWithContour{"patches-with-contour", "patches with a contour"};
 inline constexpr CounterName kEllipseSegments{"ellipse-segments", "segments on ellipses"};
 inline constexpr CounterName kHyperbolaSegments{"hyperbola-segments", "segments on hyperbolas"};
@@ -538,8 +538,15 @@ inline constexpr CounterName kInteriorCusps{"interior-cusps", "interior cusps (e
 inline constexpr CounterName kBoundaryCusps{"boundary-cusps", "cusps on patch boundaries"};
 inline constexpr CounterName kDegenerateCuspPatches{"degenerate-cusp-patches",
                                                     "patches with a non-generic cusp curve"};
-inline constexpr CounterName kFitRmsDistance{"fit-rms-distance",
-                                             "RMS distance to the input vertices (/ bbox diagonal)"};
+// Powell-Sabin view graph (SplineViewGraph.h).
+inline constexpr CounterName kUnreliableBoundaryCusps{
+    "unreliable-boundary-cusps", "boundary cusps with their far side from the rays"};
+inline constexpr CounterName kUncheckedCuspSteps{
+    "unchecked-cusp-steps", "uncertain boundary cusps whose branches differ by other than 1"};
+inline constexpr CounterName kPropagatedChains{"propagated-chains",
+                                               "chains given their QI by propagation"};
+inline constexpr CounterName kFitRmsDistance{
+    "fit-rms-distance", "RMS distance to the input vertices (/ bbox diagonal)"};
 
 } // namespace counters
 } // namespace contour

@@ -4,18 +4,25 @@
 #include "contours/Methods.h"
 
 #include <QtConcurrent/QtConcurrent>
+#include <stdexcept>
 
 namespace contour {
 
 namespace {
 
-// The primary's values of the parameters `other` has too.
+// The primary's values of the parameters `other` has too, where they are in
+// `other`'s range: a shared name may allow other values in each method.
 ParameterSet sharedParameters(const Method& other, const ParameterSet& primary) {
     ParameterSet shared;
-    for (const auto& [name, value] : primary.values())
-        if (const ParameterSpec* spec = other.parameter(name);
-            spec && spec->defaultValue.index() == value.index())
+    for (const auto& [name, value] : primary.values()) {
+        const ParameterSpec* spec = other.parameter(name);
+        if (!spec || spec->defaultValue.index() != value.index())
+            continue;
+        ParameterSet one;
+        one.set(name, value);
+        if (validateParameters({*spec}, one).empty())
             shared.set(name, value);
+    }
     return shared;
 }
 
@@ -66,7 +73,13 @@ void MethodComparison::restart() {
     ParameterSet parameters = ParameterSet::defaults(other->parameters);
     for (const auto& [name, value] : shared_.values())
         parameters.set(name, value);
-    runner_ = std::make_unique<Runner>(*other, *input_, *camera_, parameters);
+    try {
+        runner_ = std::make_unique<Runner>(*other, *input_, *camera_, parameters);
+    } catch (const std::invalid_argument& e) {
+        error_ = QString::fromStdString(e.what());
+        emit changed();
+        return;
+    }
     running_ = true;
     Runner* runner = runner_.get();
     watcher_.setFuture(QtConcurrent::run([runner]() {

@@ -3,7 +3,8 @@
 //
 //   xvfb-run -a -s "-screen 0 1920x1200x24" bench_workbench
 //       [--meshes-dir DIR] [--orbit-mesh NAME] [--orbit-method M] [--frames N]
-//       [--step-mesh NAME] [--width W] [--height H] [--out figures.csv]
+//       [--step-mesh NAME] [--move-mesh NAME] [--move-method M] [--moves N]
+//       [--parts orbit,step,move] [--width W] [--height H] [--out figures.csv]
 //
 // Part 1, orbit frame rate: the orbit model (default controlmesh with the
 // consistent method: about 117k faces at its last phase, every 3D overlay
@@ -30,6 +31,15 @@
 // next to the phase's own Snapshot::phaseSeconds (the rest is the window:
 // post-condition checks, snapshot-to-VTK conversion, rendering).
 //
+// Part 3, camera-move latency: the move model (default spot_control_mesh with
+// the powell-sabin method) is run to the end; then the 3D view is orbited N
+// times by 360/N degrees and each time taken as the analysis camera
+// (MainWindow::setAnalysisCameraFromView, what View > Camera from view
+// does): the wall time from there until the window is idle and both views
+// have repainted with the new view's snapshot, next to the sum of the
+// per-view phases' Snapshot::phaseSeconds (the view-independent phases come
+// from the preprocessing cache).
+//
 // Under Xvfb, rendering is Mesa's llvmpipe on the CPU: a desktop GPU is
 // faster. The figures say which renderer ran.
 #include "BenchSupport.h"
@@ -37,6 +47,7 @@
 #include "MainWindow.h"
 #include "SceneView3D.h"
 #include "SurfaceFormat.h"
+#include "pipeline/CounterNames.h"
 #include "pipeline/Runner.h"
 #include "pipeline/Snapshot.h"
 
@@ -47,6 +58,7 @@
 #include <QOpenGLContext>
 #include <QOpenGLFunctions>
 #include <QWindow>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -130,6 +142,10 @@ int main(int argc, char** argv) {
     std::string orbitMesh = "controlmesh";
     std::string orbitMethod = "consistent";
     std::string stepMesh = "bob_quad";
+    std::string moveMesh = "spot_control_mesh";
+    std::string moveMethod = "powell-sabin";
+    int moves = 12;
+    std::vector<std::string> parts{"orbit", "step", "move"};
     int frames = 120;
     int width = 1600;
     int height = 1000;
@@ -144,6 +160,16 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(4, 100000))
         ->capture_default_str();
     app.add_option("--step-mesh", stepMesh, "Model stepped phase by phase (consistent method)")
+        ->capture_default_str();
+    app.add_option("--move-mesh", moveMesh, "Model whose analysis camera is moved")
+        ->capture_default_str();
+    app.add_option("--move-method", moveMethod, "Method run on the moved model")
+        ->capture_default_str();
+    app.add_option("--moves", moves, "Camera moves (one full turn)")
+        ->check(CLI::Range(2, 1000))
+        ->capture_default_str();
+    app.add_option("--parts", parts, "Parts to run: orbit, step, move")
+        ->delimiter(',')
         ->capture_default_str();
     app.add_option("--width", width, "Main window width")->capture_default_str();
     app.add_option("--height", height, "Main window height")->capture_default_str();
@@ -178,8 +204,12 @@ int main(int argc, char** argv) {
     std::printf("bench_workbench: load average %s, window %dx%d\n", loadAverage().c_str(), width,
                 height);
 
+    const auto wanted = [&](const char* part) {
+        return std::find(parts.begin(), parts.end(), part) != parts.end();
+    };
     // Part 1: orbit.
-    if (const auto path = findMeshFile(meshesDir, orbitMesh)) {
+    if (!wanted("orbit")) {
+    } else if (const auto path = findMeshFile(meshesDir, orbitMesh)) {
         const QElapsedTimer runTimer = [] {
             QElapsedTimer t;
             t.start();
@@ -316,7 +346,8 @@ int main(int argc, char** argv) {
     }
 
     // Part 2: step latency.
-    if (const auto path = findMeshFile(meshesDir, stepMesh)) {
+    if (!wanted("step")) {
+    } else if (const auto path = findMeshFile(meshesDir, stepMesh)) {
         if (!openAndRun(window, *path, QStringLiteral("consistent"))) {
             std::printf("step: %s did not run to the end: %s\n", stepMesh.c_str(),
                         qPrintable(window.lastError()));
@@ -353,6 +384,51 @@ int main(int argc, char** argv) {
         }
     } else {
         std::printf("step: %s not found in %s: skipped\n", stepMesh.c_str(), meshesDir.c_str());
+    }
+
+    // Part 3: camera-move latency.
+    if (!wanted("move")) {
+    } else if (const auto path = findMeshFile(meshesDir, moveMesh)) {
+        if (!openAndRun(window, *path, QString::fromStdString(moveMethod))) {
+            std::printf("move: %s with %s did not run to the end: %s\n", moveMesh.c_str(),
+                        moveMethod.c_str(), qPrintable(window.lastError()));
+        } else {
+            SceneView3D* view = window.sceneView();
+            const int phases = window.runner()->phaseCount();
+            double total = 0.0, worst = 0.0, totalPhases = 0.0;
+            int done = 0;
+            for (int m = 0; m < moves; ++m) {
+                view->orbit(360.0 / moves, 0.0);
+                renderNextFrame(view);
+                QElapsedTimer timer;
+                timer.start();
+                window.setAnalysisCameraFromView();
+                if (!window.waitForIdle(3600000) || window.completedPhases() != phases)
+                    break;
+                view->repaint();
+                window.imageView()->repaint();
+                const double seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
+                double inPhases = 0.0;
+                for (const Snapshot& s : window.runner()->snapshots())
+                    if (s.phaseIndex >= 0 && s.counter(counters::kPreprocessingCached) != 1.0)
+                        inPhases += s.phaseSeconds;
+                total += seconds;
+                worst = std::max(worst, seconds);
+                totalPhases += inPhases;
+                ++done;
+                std::printf("move %2d: %.3f s to updated views (per-view phases %.3f s)\n", m + 1,
+                            seconds, inPhases);
+                if (csv)
+                    csv << "move," << moveMesh << ',' << moveMethod << ",,"
+                        << ",," << seconds << ",," << inPhases << '\n';
+            }
+            std::printf("move: %s with %s, %d of %d moves: mean %.3f s, largest %.3f s to updated "
+                        "views (per-view phases %.3f s on average)\n",
+                        moveMesh.c_str(), moveMethod.c_str(), done, moves,
+                        done > 0 ? total / done : 0.0, worst, done > 0 ? totalPhases / done : 0.0);
+        }
+    } else {
+        std::printf("move: %s not found in %s: skipped\n", moveMesh.c_str(), meshesDir.c_str());
     }
     return 0;
 }

@@ -757,11 +757,25 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
     toWorld.jacobian = [&transform](const Vec3& p) {
         return transform.inverseJacobian(p);
     };
+    const auto tessellationStart = std::chrono::steady_clock::now();
     const int level = ctx.parameters.getInt("tessellation-level");
-    SplineTessellation t = tessellateSpline(spline, layout, level, toWorld);
+    // The welding of the tessellation depends on the layout only: built for
+    // the first view, then re-evaluated for each new spline.
+    bool weldedNow = false;
+    const auto welded =
+        cachedStage<SplineTessellation>(
+            s.cage, layoutKey(ctx.parameters) + " | tessellation " + std::to_string(level),
+            [&] {
+                weldedNow = true;
+                return std::make_shared<const SplineTessellation>(
+                    tessellateSpline(spline, layout, level, toWorld));
+            })
+            .first;
+    SplineTessellation t =
+        weldedNow ? SplineTessellation(*welded) : reevaluateTessellation(*welded, spline, toWorld);
     std::vector<double> offset(t.mesh.vertexCount());
     std::vector<int> cone(t.mesh.vertexCount(), 0);
-    for (Index v = 0; v < t.mesh.vertexCount(); ++v) {
+    tbb::parallel_for(Index(0), t.mesh.vertexCount(), [&](Index v) {
         const Triangle& corners = layout.mesh.triangle(t.vertexMacroPatch[v]);
         const Vec3& b = t.barycentric[v];
         const Vec3 flat = b[0] * layout.mesh.position(corners[0]) +
@@ -771,18 +785,18 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
         for (int c = 0; c < 3; ++c)
             if (b[c] == 1.0 && layout.isCone[corners[c]])
                 cone[v] = 1;
-    }
+    });
     std::array<std::vector<Vec3>, 3> cornerUv;
     for (auto& uv : cornerUv)
         uv.resize(t.cornerBarycentric.size());
-    for (size_t f = 0; f < t.cornerBarycentric.size(); ++f) {
+    tbb::parallel_for(size_t(0), t.cornerBarycentric.size(), [&](size_t f) {
         const auto& faceUv = layout.cornerUv[t.macroPatch[f]];
         for (int c = 0; c < 3; ++c) {
             const Vec3& b = t.cornerBarycentric[f][c];
             const Vec2 uv = b[0] * faceUv[0] + b[1] * faceUv[1] + b[2] * faceUv[2];
             cornerUv[c][f] = Vec3(uv.x(), uv.y(), 0.0);
         }
-    }
+    });
     s.mesh = std::make_shared<const TriangleMesh>(std::move(t.mesh));
     setMeshCounters(s);
     s.fields.clear();
@@ -806,6 +820,7 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
                 "distance from the spline to the input triangle at the same parameter"});
     s.setField(fields::kCone, {FieldLocation::Vertex, std::move(cone), "1 at a cone"});
     s.setCounter(counters::kTessellationFaces, s.mesh->faceCount());
+    s.setCounter(counters::kTessellationSeconds, secondsSince(tessellationStart));
     s.setCounter(counters::kStageSeconds, fitSeconds);
     s.setCounter(counters::kFitResidual, residual);
     s.setCounter(counters::kFitMaxDistance, diagonal > 0.0 ? worst / diagonal : 0.0);
@@ -1071,8 +1086,10 @@ void runCusps(const PhaseContext& ctx, Snapshot& s) {
 void runVisibility(const PhaseContext& ctx, Snapshot& s) {
     const PowellSabinState& view = viewState(s);
     const ProjectiveTransform transform(ctx.camera);
-    SplineViewGraph built =
-        buildSplineViewGraph(*view.spline, *view.segments, *view.chaining, ctx.camera, transform);
+    SplineViewGraphOptions options;
+    options.minRayChainPixels = ctx.parameters.getDouble("min-ray-chain-pixels");
+    SplineViewGraph built = buildSplineViewGraph(*view.spline, *view.segments, *view.chaining,
+                                                 ctx.camera, transform, options);
     ctx.checkCancelled();
     const ViewGraph& graph = built.graph;
     const SplineViewGraphStats& stats = built.stats;
@@ -1089,6 +1106,9 @@ void runVisibility(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kCurtainFolds, static_cast<double>(folds));
     s.setCounter(counters::kInteriorCusps, stats.interiorCusps);
     s.setCounter(counters::kBoundaryCusps, stats.boundaryCusps);
+    s.setCounter(counters::kUnreliableBoundaryCusps, stats.unreliableCusps);
+    s.setCounter(counters::kUncheckedCuspSteps, stats.uncheckedCuspSteps);
+    s.setCounter(counters::kPropagatedChains, stats.propagatedChains);
     s.setCounter(counters::kRayTests, static_cast<double>(stats.rays));
     s.setCounter(counters::kConflicts, static_cast<double>(graph.conflicts.size()));
     s.setCounter(counters::kVisibleLengthPx, graph.visibleLengthPixels());
@@ -1107,13 +1127,20 @@ void runVisibility(const PhaseContext& ctx, Snapshot& s) {
                       "curves (0.25 px chords), not from Bezier clipping");
 }
 
-std::vector<InvariantCheck> checkVisibility(const PhaseContext&, const Snapshot& s) {
-    InvariantCheck decided{"every chain has a QI from a ray test", 0, ""};
+std::vector<InvariantCheck> checkVisibility(const PhaseContext& ctx, const Snapshot& s) {
+    InvariantCheck decided{"every chain has a QI, from its ray or by propagation", 0, ""};
+    InvariantCheck rays{"every chain of at least min-ray-chain-pixels has its own ray", 0, ""};
+    const double minRay = ctx.parameters.getDouble("min-ray-chain-pixels");
     if (s.viewGraph)
-        for (size_t c = 0; c < s.viewGraph->chains.size(); ++c)
-            if (s.viewGraph->chains[c].qi < 0 && decided.violations++ == 0)
+        for (size_t c = 0; c < s.viewGraph->chains.size(); ++c) {
+            const ViewChain& chain = s.viewGraph->chains[c];
+            if (chain.qi < 0 && decided.violations++ == 0)
                 decided.firstExample = "chain " + std::to_string(c);
-    return {decided};
+            if ((chain.closed || chain.lengthPixels >= minRay) &&
+                chain.decidedBy != VisibilityRule::RayTest && rays.violations++ == 0)
+                rays.firstExample = "chain " + std::to_string(c);
+        }
+    return {decided, rays};
 }
 
 } // namespace
@@ -1259,6 +1286,18 @@ Method makePowellSabinMethod() {
                 "eigenvalues) and boundary cusps by the sign test at patch sides (§4.2).",
                 runCusps,
                 {}});
+    m.parameters.push_back(
+        {"min-ray-chain-pixels",
+         "Shortest ray-tested chain (px)",
+         "Shorter chains take their QI from their neighbours, not from a ray: next to a cusp "
+         "the sheet covering a sub-pixel chain is closer to it in depth than a ray test "
+         "resolves. 0: a ray on every chain. The paper casts rays only where propagation "
+         "leaves a chain without a QI.",
+         ParameterType::Double,
+         1.0,
+         0.0,
+         64.0,
+         {}});
     m.addPhase({"visibility",
                 "The view graph (§4.2): the chains sampled densely, cut at cusps, cone points and "
                 "image-space crossings (T-junctions); one ray test per piece against the patches "

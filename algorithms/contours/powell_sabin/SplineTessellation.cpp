@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <tbb/parallel_for.h>
 #include <unordered_map>
 
 namespace contour::powell_sabin {
@@ -42,6 +43,57 @@ Index tessellationTriangle(Index patch, const Vec3& b, int k) {
     for (int r = 0; r < j; ++r)
         index += 2 * (k - r) - 1;
     return patch * k * k + index + 2 * i + (down ? 1 : 0);
+}
+
+namespace {
+
+// A point of the spline and its unit normal (zero at a cone), mapped by
+// toWorld.
+void evaluateVertex(const QuadraticBezier<Vec3>& patch, const Vec3& bary,
+                    const SplineToWorld& toWorld, Vec3& point, Vec3& normal) {
+    Vec3 du, dv;
+    uvDerivatives(patch, bary, du, dv);
+    point = evaluate(patch, bary);
+    if (toWorld.jacobian) {
+        const Eigen::Matrix3d jac = toWorld.jacobian(point);
+        du = jac * du;
+        dv = jac * dv;
+    }
+    if (toWorld.point)
+        point = toWorld.point(point);
+    const Vec3 n = du.cross(dv);
+    normal = n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3::Zero();
+}
+
+} // namespace
+
+SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
+                                          const PowellSabinSpline& spline,
+                                          const SplineToWorld& toWorld) {
+    const Index n = previous.mesh.vertexCount();
+    if (static_cast<Index>(previous.vertexPatch.size()) != n)
+        throw std::invalid_argument("reevaluateTessellation: the tessellation has no "
+                                    "evaluation sites");
+    for (Index p : previous.vertexPatch)
+        if (p < 0 || p >= static_cast<Index>(spline.patches.size()))
+            throw std::invalid_argument("reevaluateTessellation: the spline has other patches");
+    std::vector<Vec3> positions(static_cast<size_t>(n));
+    SplineTessellation out;
+    out.normals.resize(static_cast<size_t>(n));
+    tbb::parallel_for(Index(0), n, [&](Index v) {
+        evaluateVertex(spline.patches[previous.vertexPatch[v]], previous.vertexPatchBarycentric[v],
+                       toWorld, positions[v], out.normals[v]);
+    });
+    out.mesh = previous.mesh.withPositions(std::move(positions));
+    out.patch = previous.patch;
+    out.macroPatch = previous.macroPatch;
+    out.patchEdge = previous.patchEdge;
+    out.barycentric = previous.barycentric;
+    out.vertexMacroPatch = previous.vertexMacroPatch;
+    out.cornerBarycentric = previous.cornerBarycentric;
+    out.vertexPatch = previous.vertexPatch;
+    out.vertexPatchBarycentric = previous.vertexPatchBarycentric;
+    return out;
 }
 
 SplineTessellation tessellateSpline(const PowellSabinSpline& spline, const ConeLayout& layout,
@@ -110,20 +162,12 @@ SplineTessellation tessellateSpline(const PowellSabinSpline& spline, const ConeL
                         index.try_emplace(key, static_cast<Index>(positions.size()));
                     if (inserted) {
                         const Vec3 bary(double(k - i - j) / k, double(i) / k, double(j) / k);
-                        Vec3 du, dv;
-                        uvDerivatives(patch, bary, du, dv);
-                        Vec3 point = evaluate(patch, bary);
-                        if (toWorld.jacobian) {
-                            const Eigen::Matrix3d jac = toWorld.jacobian(point);
-                            du = jac * du;
-                            dv = jac * dv;
-                        }
-                        if (toWorld.point)
-                            point = toWorld.point(point);
-                        const Vec3 normal = du.cross(dv);
+                        Vec3 point, normal;
+                        evaluateVertex(patch, bary, toWorld, point, normal);
                         positions.push_back(point);
-                        out.normals.push_back(normal.norm() > 0.0 ? Vec3(normal.normalized())
-                                                                  : Vec3::Zero());
+                        out.normals.push_back(normal);
+                        out.vertexPatch.push_back(p);
+                        out.vertexPatchBarycentric.push_back(bary);
                         out.barycentric.push_back(Vec3(n[0], n[1], n[2]) / denominator);
                         out.vertexMacroPatch.push_back(f);
                     }

@@ -24,6 +24,10 @@ struct SplineTessellation {
     // Per triangle, per corner: barycentric coordinates in the triangle's own
     // macro-patch (a welded vertex has other ones in its other macro-patches).
     std::vector<std::array<Vec3, 3>> cornerBarycentric;
+    // Per vertex: a patch it lies in and its barycentric coordinates there,
+    // where reevaluateTessellation evaluates it.
+    std::vector<Index> vertexPatch;
+    std::vector<Vec3> vertexPatchBarycentric;
 };
 
 // `level` = k >= 1 subdivisions per patch side. `toWorld` maps a spline
@@ -40,5 +44,15 @@ Index tessellationTriangle(Index patch, const Vec3& barycentric, int level);
 
 SplineTessellation tessellateSpline(const PowellSabinSpline& spline, const ConeLayout& layout,
                                     int level, const SplineToWorld& toWorld = {});
+
+// The tessellation of another spline on the same layout (the next view's
+// fit): the connectivity and labels of `previous`, which tessellateSpline
+// made for that layout, with the positions and normals evaluated again (in
+// parallel). The welding by layout position is view-independent, so a new
+// view pays only the evaluation. Throws std::invalid_argument when the
+// spline has other patches than `previous` was made for.
+SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
+                                          const PowellSabinSpline& spline,
+                                          const SplineToWorld& toWorld = {});
 
 } // namespace contour::powell_sabin

@@ -48,6 +48,8 @@ void checkOptions(const SplineViewGraphOptions& o) {
     if (!nonNegative(o.coneCrossingPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: coneCrossingPixels must be non-negative");
+    if (!nonNegative(o.minRayChainPixels))
+        throw std::invalid_argument("buildSplineViewGraph: minRayChainPixels must be non-negative");
     if (!positive(o.gridCellsPerPatch))
         throw std::invalid_argument("buildSplineViewGraph: gridCellsPerPatch must be positive");
 }
@@ -118,6 +120,7 @@ private:
     void addEndNodes();
     void cutChains();
     void rayTests();
+    void propagate(std::vector<Index>& queue);
     void checkRules();
     void conflict(Index chain, int propagated, Index from, Index via, const std::string& reason);
 
@@ -135,6 +138,7 @@ private:
     std::vector<std::vector<Station>> pending_;
     // Cusps: the far branch follows the node in the traversal direction.
     std::map<Index, bool> farAfter_;
+    std::vector<Vec3> rayOrigin_; // per view chain, world (zero without a ray)
     struct Crossing {
         Index node = kInvalidIndex;
         Index nearPoly = kInvalidIndex, farPoly = kInvalidIndex;
@@ -803,7 +807,8 @@ void Builder::rayTests() {
                 grid[static_cast<size_t>(j) * nx + i].push_back(p);
     }
     out_.raySample.assign(g.chains.size(), kInvalidIndex);
-    for (Index c = 0; c < static_cast<Index>(g.chains.size()); ++c) {
+    rayOrigin_.assign(g.chains.size(), Vec3::Zero());
+    auto castRay = [&](Index c) {
         ViewChain& chain = g.chains[c];
         const std::vector<Vec2>& im = chain.image;
         const Index n = static_cast<Index>(im.size());
@@ -838,8 +843,71 @@ void Builder::rayTests() {
         chain.rayQi = qi;
         chain.decidedBy = VisibilityRule::RayTest;
         out_.raySample[c] = best;
-    }
+        rayOrigin_[c] = transform_.invert(p);
+    };
+    std::vector<Index> queue;
+    for (Index c = 0; c < static_cast<Index>(g.chains.size()); ++c)
+        if (g.chains[c].closed || g.chains[c].lengthPixels >= o_.minRayChainPixels) {
+            castRay(c);
+            queue.push_back(c);
+        }
+    propagate(queue);
+    // Components of short chains only: a ray on the longest chain left.
+    std::vector<Index> order(g.chains.size());
+    for (size_t c = 0; c < order.size(); ++c)
+        order[c] = static_cast<Index>(c);
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+        return g.chains[a].lengthPixels > g.chains[b].lengthPixels;
+    });
+    for (Index c : order)
+        if (g.chains[c].qi < 0) {
+            castRay(c);
+            queue.assign(1, c);
+            propagate(queue);
+        }
     out_.stats.rays = g.rayTests;
+}
+
+// §4.2 propagation from the chains in `queue` to the chains without a QI,
+// through T-junctions and cusps whose far side is known (not through cone
+// points nor uncertain boundary cusps).
+void Builder::propagate(std::vector<Index>& queue) {
+    ViewGraph& g = out_.graph;
+    auto give = [&](Index to, int qi, Index from, Index via) {
+        if (to == kInvalidIndex || g.chains[to].qi >= 0 || qi < 0)
+            return;
+        ViewChain& chain = g.chains[to];
+        chain.qi = qi;
+        chain.decidedBy = VisibilityRule::Propagation;
+        chain.propagatedFrom = from;
+        chain.propagatedVia = via;
+        ++out_.stats.propagatedChains;
+        queue.push_back(to);
+    };
+    for (size_t k = 0; k < queue.size(); ++k) {
+        const Index c = queue[k];
+        const int qi = g.chains[c].qi;
+        for (Index v : {g.chains[c].startNode, g.chains[c].endNode}) {
+            if (v == kInvalidIndex)
+                continue;
+            const ViewNode& node = g.nodes[v];
+            if (node.type == ViewNodeType::CurtainFold && !node.unreliable) {
+                if (node.nearChains[0] == c)
+                    give(node.farChains[1], qi + node.qiStep, c, v);
+                else if (node.farChains[1] == c)
+                    give(node.nearChains[0], qi - node.qiStep, c, v);
+            } else if (node.type == ViewNodeType::ImageIntersection) {
+                const auto [n0, n1] = node.nearChains;
+                const auto [f0, f1] = node.farChains;
+                if (c == n0 || c == n1)
+                    give(c == n0 ? n1 : n0, qi, c, v);
+                else if (c == f0)
+                    give(f1, qi + node.qiStep, c, v);
+                else if (c == f1)
+                    give(f0, qi - node.qiStep, c, v);
+            }
+        }
+    }
 }
 
 void Builder::conflict(Index chain, int propagated, Index from, Index via,
@@ -854,8 +922,7 @@ void Builder::conflict(Index chain, int propagated, Index from, Index via,
     x.reason = reason;
     x.fromChain = from;
     x.viaNode = via;
-    const Index sample = out_.raySample[chain];
-    x.rayOrigin = sample != kInvalidIndex ? c.points[sample] : Vec3::Zero();
+    x.rayOrigin = rayOrigin_[chain];
     g.conflicts.push_back(std::move(x));
 }
 
@@ -868,8 +935,17 @@ void Builder::checkRules() {
             const Index nearC = node.nearChains[0], farC = node.farChains[1];
             if (nearC == kInvalidIndex || farC == kInvalidIndex)
                 continue;
-            const int expected = g.chains[nearC].qi + node.qiStep;
-            if (g.chains[farC].qi != expected)
+            const int nearQi = g.chains[nearC].qi, farQi = g.chains[farC].qi;
+            // A boundary cusp whose two branches both leave towards (or both
+            // away from) the viewer: its 3D contour kinks in depth as well,
+            // and §4.2 gives no rule there (no propagation through boundary
+            // cusps); each branch keeps its own ray, and nothing is checked.
+            if (node.unreliable) {
+                out_.stats.uncheckedCuspSteps += std::abs(farQi - nearQi) != node.qiStep;
+                continue;
+            }
+            const int expected = nearQi + node.qiStep;
+            if (farQi != expected)
                 conflict(farC, expected, nearC, v, "cusp: far branch != near branch + 1");
         } else if (node.type == ViewNodeType::ImageIntersection) {
             const auto [n0, n1] = node.nearChains;

@@ -28,14 +28,19 @@
 //   on which the near surface folds (the image of the second derivative of p
 //   along tau in the tangent plane; §4.2: contour over contour gives + 2).
 //
-// QI: one ray test per chain (§4.2: after the splitting one test per piece
-// suffices) at its sample nearest half its image length, counting the
-// spline's points on the ray along +z in front of it (PatchRayTest.h), with a
-// uniform grid over the patches' control-point boxes in transformed xy
-// (§4.2: "bounding-box tests and spatial grid"). The propagation rules are
-// then only checked: equal QI on the two near pieces of a T-junction, + 1 at
-// a cusp, + 2 behind a T-junction; each disagreement is a VisibilityConflict
-// and flags the chain, and no QI is changed.
+// QI: one ray test per chain of at least minRayChainPixels (§4.2: after the
+// splitting one test per piece suffices) at its sample nearest half its
+// image length, counting the spline's points on the ray along +z in front of
+// it (PatchRayTest.h), with a uniform grid over the patches' control-point
+// boxes in transformed xy (§4.2: "bounding-box tests and spatial grid").
+// Shorter chains get their QI by propagation from their neighbours (§4.2:
+// equal QI on the two near pieces of a T-junction, + 2 behind it, + 1 to a
+// cusp's far branch; not through cone points nor through boundary cusps
+// whose far side is uncertain), and a component without a long chain is
+// seeded by a ray on its longest chain. The rules are then checked at every
+// node: each disagreement is a VisibilityConflict and flags the chain, and
+// no QI is changed. Boundary cusps whose far side is uncertain are neither
+// propagated through nor checked.
 //
 // Coordinates: the spline lives in the transformed space of
 // ProjectiveTransform.h (orthographic along +z, smaller z nearer). The
@@ -84,6 +89,14 @@ struct SplineViewGraphOptions {
     // point are the loops meeting at the cone (§4.2), not T-junctions: they
     // are left out and counted. Not from the paper.
     double coneCrossingPixels = 0.5;
+    // Chains shorter than this in the image (pixels) take their QI by
+    // propagation instead of a ray of their own. Not from the paper, which
+    // casts a ray only where propagation leaves a chain without a QI. Next to
+    // a cusp the sheet that covers the far branch passes within a depth of
+    // order d^(3/2) of it (d the distance to the cusp), below what the ray
+    // test's depth tolerance resolves, and sub-pixel chains lie there. 0:
+    // a ray on every chain.
+    double minRayChainPixels = 1.0;
     // Cells of the ray-test grid per patch (cells = this * patches).
     double gridCellsPerPatch = 1.0;
     PatchCuspOptions cusp;
@@ -103,6 +116,9 @@ struct SplineViewGraphStats {
     Index interiorCusps = 0;
     Index boundaryCusps = 0;
     Index unreliableCusps = 0; // boundary cusps whose far side is uncertain
+    // Of those, the ones whose branches' QIs do not differ by one (not
+    // conflicts: §4.2 has no rule there).
+    Index uncheckedCuspSteps = 0;
     // Interior cusps of patchCusps on no segment of their patch (the
     // contour filter of PatchCusps accepted a root the trimming dropped),
     // and patches whose cusp computation was degenerate: both left out.
@@ -117,6 +133,7 @@ struct SplineViewGraphStats {
     Index curveEnds = 0;
     long long samples = 0;
     long long rays = 0;
+    Index propagatedChains = 0; // chains whose QI came from a neighbour
     Index conflicts = 0;
     double secondsCusps = 0.0;
     double secondsSampling = 0.0;
