@@ -158,16 +158,20 @@ void ParameterDomainView::renderCache() {
         return QPointF(q.x(), height() - q.y()); // v up
     };
     QPainter painter(&cache_);
-    painter.setRenderHint(QPainter::Antialiasing, triangles_.size() < 20000);
     // Outlines only while they do not drown the colours.
     const bool outline = triangles_.size() * 40.0 < static_cast<double>(width()) * height() / 10.0;
+    // Without outlines, antialiased fills would leave seams between
+    // neighbours unless each is also stroked in its colour; aliased fills
+    // tile the plane exactly, at a fraction of the cost (a spline's drawing
+    // tessellation has tens of thousands of triangles, redrawn per view).
+    painter.setRenderHint(QPainter::Antialiasing, outline);
+    painter.setPen(outline ? QPen(QColor(90, 90, 90), 0.0) : QPen(Qt::NoPen));
     for (const UvTriangle& t : triangles_) {
         const QPointF points[3] = {toWidget(t.uv[0]), toWidget(t.uv[1]), toWidget(t.uv[2])};
-        const QColor color = colorOf(t.value);
-        painter.setBrush(color);
-        painter.setPen(outline ? QPen(QColor(90, 90, 90), 0.0) : QPen(color, 0.0));
+        painter.setBrush(colorOf(t.value));
         painter.drawPolygon(points, 3);
     }
+    painter.setRenderHint(QPainter::Antialiasing, true);
     painter.setPen(QPen(QColor(200, 0, 0), 2.0));
     for (const Segment& s : cut_)
         painter.drawLine(toWidget(s.a), toWidget(s.b));

@@ -101,8 +101,14 @@ void addRunRows(QTreeWidgetItem* item, const RunInfo& run) {
     row->setToolTip(0, lines.join('\n'));
 }
 
-void fillDetails(QTreeWidgetItem* item, const CounterSplit& counters, const Snapshot& snapshot) {
-    qDeleteAll(item->takeChildren());
+void fillDetails(QTreeWidgetItem* shown, const CounterSplit& counters, const Snapshot& snapshot) {
+    qDeleteAll(shown->takeChildren());
+    // The rows are built under an item outside the tree and moved in at
+    // once: inserted one by one, each row would make the tree re-measure
+    // its columns (a spline method carries about a hundred counters per
+    // phase, so a run to the end rebuilt over a thousand rows row by row).
+    QTreeWidgetItem staging;
+    QTreeWidgetItem* item = &staging;
     if (snapshot.run.inBranch())
         addRunRows(item, snapshot.run);
     for (const Counter& c : counters.changed)
@@ -156,8 +162,12 @@ void fillDetails(QTreeWidgetItem* item, const CounterSplit& counters, const Snap
         font.setItalic(true);
         row->setFont(0, font);
         row->setData(0, kKindRole, kNoteRow);
-        row->setFirstColumnSpanned(true);
     }
+    shown->addChildren(staging.takeChildren());
+    // Spanning is a property of the tree's row: set once the row is in it.
+    for (int i = 0; i < shown->childCount(); ++i)
+        if (shown->child(i)->data(0, kKindRole).toInt() == kNoteRow)
+            shown->child(i)->setFirstColumnSpanned(true);
 }
 
 } // namespace

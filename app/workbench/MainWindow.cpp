@@ -874,6 +874,7 @@ void MainWindow::showRunnerState() {
         }
         domainView_->clearScene();
         domainView_->setVisible(false);
+        domainViewMethod_ = nullptr;
         stepper_->setSnapshots({});
         updateColorLegend();
         return;
@@ -888,8 +889,14 @@ void MainWindow::showRunnerState() {
         domainView_->setVisible(true);
         const int third = std::max(1, splitter_->width() / 3);
         splitter_->setSizes({third, third, third});
-    } else if (!domainView_->hasLayout()) {
+        domainViewMethod_ = &runner->method();
+    } else if (!domainView_->hasLayout() && domainViewMethod_ != &runner->method()) {
+        // Only another method hides it: the phases before the layout of the
+        // method that has one (a new camera re-runs from the first) keep
+        // the view in place, saying there is no layout yet, instead of
+        // re-laying out the window twice per run.
         domainView_->setVisible(false);
+        domainViewMethod_ = nullptr;
     }
     stepper_->setSnapshots(runner->snapshots());
     // Facing appears with its phase without the selector's list changing.

@@ -278,6 +278,7 @@ private:
     ImageView2D* imageView_ = nullptr;
     // Shown beside the others while the snapshot has a uv layout.
     ParameterDomainView* domainView_ = nullptr;
+    const Method* domainViewMethod_ = nullptr; // the method whose layout it shows
     MethodPanel* methodPanel_ = nullptr;
     PhaseStepper* stepper_ = nullptr;
     QSplitter* splitter_ = nullptr;
