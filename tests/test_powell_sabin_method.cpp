@@ -212,13 +212,23 @@ private slots:
     }
 
     void aNewCameraReevaluatesTheTessellation() {
-        // The welding of the drawing tessellation is built for the first view
-        // and re-evaluated for the next: the result must be the tessellation
-        // of the new spline made from scratch.
+        // The welding of the drawing tessellation is built once per layout,
+        // in the preprocessing, and re-evaluated for each view: the result
+        // must be the tessellation of the view's spline made from scratch,
+        // and the view-independent fields are shared between views.
         const auto sphere = shape("ellipsoid", 8);
-        run("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1)), {}, "fit");
+        const MethodRun first =
+            run("powell-sabin", sphere, viewOf(*sphere, Vec3(0, 0, 1)), {}, "fit");
+        QVERIFY(first.phase("factorization").counter(counters::kWeldingSeconds) > 0.0);
         const Camera camera = viewOf(*sphere, Vec3(1, 0.4, -0.3));
         const MethodRun second = run("powell-sabin", sphere, camera, {}, "fit");
+        QCOMPARE(second.phase("factorization").counter(counters::kWeldingSeconds), 0.0);
+        QCOMPARE(second.phase("factorization").counter(counters::kPreprocessingCached), 1.0);
+        for (const char* name :
+             {fields::kPatch, fields::kPatchEdge, fields::kCornerUv0, fields::kCone})
+            QVERIFY2(first.last().fields.at(name) == second.last().fields.at(name), name);
+        QVERIFY(first.last().fields.at(fields::kVertexNormal) !=
+                second.last().fields.at(fields::kVertexNormal));
         const Snapshot& fit = second.last();
         const powell_sabin::PowellSabinState* state = powell_sabin::powellSabinState(fit);
         QVERIFY(state && state->spline && state->layout);

@@ -30,6 +30,8 @@ inline constexpr CounterName kDomainBoundaryEdges{"domain-boundary-edges", "doma
 inline constexpr CounterName kTessellationLevel{"tessellation-level", "tessellation level"};
 inline constexpr CounterName kTessellationSeconds{"tessellation-seconds", "tessellation seconds"};
 inline constexpr CounterName kTessellationCached{"tessellation-cached", "tessellation cached"};
+inline constexpr CounterName kWeldingSeconds{"welding-seconds",
+                                             "seconds welding the drawing tessellation"};
 
 // Facing (contours/common/FacingPhase.cpp)
 inline constexpr CounterName kFrontFaces{"front-faces", "front faces"};
@@ -545,6 +547,18 @@ inline constexpr CounterName kUncheckedCuspSteps{
     "unchecked-cusp-steps", "uncertain boundary cusps whose branches differ by other than 1"};
 inline constexpr CounterName kPropagatedChains{"propagated-chains",
                                                "chains given their QI by propagation"};
+// Its steps' seconds, in the order they run.
+inline constexpr CounterName kCuspPlacementSeconds{"cusp-placement-seconds",
+                                                   "seconds placing cusps on the chains"};
+inline constexpr CounterName kSamplingSeconds{"sampling-seconds", "seconds sampling the chains"};
+inline constexpr CounterName kIntersectionSeconds{"intersection-seconds",
+                                                  "seconds finding T-junctions"};
+inline constexpr CounterName kChainCuttingSeconds{"chain-cutting-seconds",
+                                                  "seconds cutting the chains at nodes"};
+inline constexpr CounterName kRayTestSeconds{"ray-test-seconds",
+                                             "seconds of ray tests and propagation"};
+inline constexpr CounterName kRuleCheckSeconds{"rule-check-seconds",
+                                               "seconds checking the propagation rules"};
 inline constexpr CounterName kFitRmsDistance{
     "fit-rms-distance", "RMS distance to the input vertices (/ bbox diagonal)"};
 

@@ -680,13 +680,90 @@ std::vector<InvariantCheck> checkPatches(const PhaseContext& ctx, const Snapshot
     return {precise};
 }
 
+// The drawing tessellation of one layout and level with its view-independent
+// fields, shared by every view's snapshot.
+struct DrawingTessellation {
+    std::shared_ptr<const SplineTessellation> welded;
+    std::map<std::string, std::shared_ptr<const Field>> fields;
+};
+
+DrawingTessellation drawingTessellation(SplineTessellation t, const ConeLayout& layout) {
+    DrawingTessellation d;
+    const auto add = [&](const char* name, Field field) {
+        d.fields[name] = std::make_shared<const Field>(std::move(field));
+    };
+    std::array<std::vector<Vec3>, 3> cornerUv;
+    for (auto& uv : cornerUv)
+        uv.resize(t.cornerBarycentric.size());
+    tbb::parallel_for(size_t(0), t.cornerBarycentric.size(), [&](size_t f) {
+        const auto& faceUv = layout.cornerUv[t.macroPatch[f]];
+        for (int c = 0; c < 3; ++c) {
+            const Vec3& b = t.cornerBarycentric[f][c];
+            const Vec2 uv = b[0] * faceUv[0] + b[1] * faceUv[1] + b[2] * faceUv[2];
+            cornerUv[c][f] = Vec3(uv.x(), uv.y(), 0.0);
+        }
+    });
+    for (int c = 0; c < 3; ++c)
+        add(c == 0   ? fields::kCornerUv0
+            : c == 1 ? fields::kCornerUv1
+                     : fields::kCornerUv2,
+            {FieldLocation::Face, std::move(cornerUv[c]),
+             "(u, v, 0) of the triangle's corner in the layout"});
+    std::vector<int> cone(static_cast<size_t>(t.mesh.vertexCount()), 0);
+    for (Index v = 0; v < t.mesh.vertexCount(); ++v) {
+        const Triangle& corners = layout.mesh.triangle(t.vertexMacroPatch[v]);
+        for (int c = 0; c < 3; ++c)
+            if (t.barycentric[v][c] == 1.0 && layout.isCone[corners[c]])
+                cone[v] = 1;
+    }
+    add(fields::kCone, {FieldLocation::Vertex, std::move(cone), "1 at a cone"});
+    add(fields::kPatch,
+        {FieldLocation::Face, t.patch, "the quadratic patch 12 f + l of the triangle"});
+    add(fields::kMacroPatch,
+        {FieldLocation::Face, t.macroPatch, "the macro-patch (layout face) of the triangle"});
+    add(fields::kPatchEdge,
+        {FieldLocation::Edge, t.patchEdge,
+         "1 patch boundary, 2 macro-patch boundary, 3 cut edge, 0 inside a patch"});
+    d.welded = std::make_shared<const SplineTessellation>(std::move(t));
+    return d;
+}
+
+// The drawing tessellation of the current layout and tessellation level,
+// built once per mesh in the preprocessing: the welding needs only the
+// layout, so it is made with the spline fitted to the mesh itself (no view
+// transform) and each view evaluates its own spline at the vertices.
+std::shared_ptr<const DrawingTessellation> drawingStage(const PhaseContext& ctx,
+                                                        const Snapshot& input, bool* built) {
+    const auto layoutResult = layoutStage(ctx, input);
+    const int level = ctx.parameters.getInt("tessellation-level");
+    return cachedStage<DrawingTessellation>(
+               input.cage, layoutKey(ctx.parameters) + " | tessellation " + std::to_string(level),
+               [&] {
+                   if (built)
+                       *built = true;
+                   const ConeLayout& layout = *layoutResult->layout;
+                   const ThinPlateFit& fit = *factorStage(ctx, input)->fit;
+                   std::vector<Vec3> targets(layout.mesh.positions().begin(),
+                                             layout.mesh.positions().end());
+                   const PowellSabinSpline spline = fit.splineOf(fit.solveDofs(targets));
+                   return std::make_shared<const DrawingTessellation>(
+                       drawingTessellation(tessellateSpline(spline, layout, level), layout));
+               })
+        .first;
+}
+
 void runFactorization(const PhaseContext& ctx, Snapshot& s) {
     bool cached = false;
     const auto stage = factorStage(ctx, stageInput(s), &cached);
     s.setCounter(counters::kScalarDofs, stage->fit->dofCount());
     const Eigen::SparseMatrix<double>& hs = stage->fit->smoothingHessian();
     s.setCounter(counters::kHessianNonzeros, static_cast<double>(hs.nonZeros()));
-    s.setCounter(counters::kPreprocessingCached, cached ? 1.0 : 0.0);
+    const auto weldStart = std::chrono::steady_clock::now();
+    bool welded = false;
+    const auto drawing = drawingStage(ctx, stageInput(s), &welded);
+    s.setCounter(counters::kTessellationFaces, drawing->welded->mesh.faceCount());
+    s.setCounter(counters::kWeldingSeconds, welded ? secondsSince(weldStart) : 0.0);
+    s.setCounter(counters::kPreprocessingCached, cached && !welded ? 1.0 : 0.0);
     s.setCounter(counters::kStageSeconds, stage->seconds);
 }
 
@@ -759,66 +836,29 @@ void runFit(const PhaseContext& ctx, Snapshot& s) {
     };
     const auto tessellationStart = std::chrono::steady_clock::now();
     const int level = ctx.parameters.getInt("tessellation-level");
-    // The welding of the tessellation depends on the layout only: built for
-    // the first view, then re-evaluated for each new spline.
-    bool weldedNow = false;
-    const auto welded =
-        cachedStage<SplineTessellation>(
-            s.cage, layoutKey(ctx.parameters) + " | tessellation " + std::to_string(level),
-            [&] {
-                weldedNow = true;
-                return std::make_shared<const SplineTessellation>(
-                    tessellateSpline(spline, layout, level, toWorld));
-            })
-            .first;
-    SplineTessellation t =
-        weldedNow ? SplineTessellation(*welded) : reevaluateTessellation(*welded, spline, toWorld);
+    const auto drawing = drawingStage(ctx, input, nullptr);
+    const SplineTessellation& t = *drawing->welded;
+    TessellationPoints points = evaluateTessellationPoints(t, spline, toWorld);
     std::vector<double> offset(t.mesh.vertexCount());
-    std::vector<int> cone(t.mesh.vertexCount(), 0);
     tbb::parallel_for(Index(0), t.mesh.vertexCount(), [&](Index v) {
         const Triangle& corners = layout.mesh.triangle(t.vertexMacroPatch[v]);
         const Vec3& b = t.barycentric[v];
         const Vec3 flat = b[0] * layout.mesh.position(corners[0]) +
                           b[1] * layout.mesh.position(corners[1]) +
                           b[2] * layout.mesh.position(corners[2]);
-        offset[v] = (t.mesh.position(v) - flat).norm();
-        for (int c = 0; c < 3; ++c)
-            if (b[c] == 1.0 && layout.isCone[corners[c]])
-                cone[v] = 1;
+        offset[v] = (points.positions[v] - flat).norm();
     });
-    std::array<std::vector<Vec3>, 3> cornerUv;
-    for (auto& uv : cornerUv)
-        uv.resize(t.cornerBarycentric.size());
-    tbb::parallel_for(size_t(0), t.cornerBarycentric.size(), [&](size_t f) {
-        const auto& faceUv = layout.cornerUv[t.macroPatch[f]];
-        for (int c = 0; c < 3; ++c) {
-            const Vec3& b = t.cornerBarycentric[f][c];
-            const Vec2 uv = b[0] * faceUv[0] + b[1] * faceUv[1] + b[2] * faceUv[2];
-            cornerUv[c][f] = Vec3(uv.x(), uv.y(), 0.0);
-        }
-    });
-    s.mesh = std::make_shared<const TriangleMesh>(std::move(t.mesh));
+    s.mesh =
+        std::make_shared<const TriangleMesh>(t.mesh.withPositions(std::move(points.positions)));
     setMeshCounters(s);
     s.fields.clear();
-    for (int c = 0; c < 3; ++c)
-        s.setField(c == 0   ? fields::kCornerUv0
-                   : c == 1 ? fields::kCornerUv1
-                            : fields::kCornerUv2,
-                   {FieldLocation::Face, std::move(cornerUv[c]),
-                    "(u, v, 0) of the triangle's corner in the layout"});
-    s.setField(fields::kVertexNormal, {FieldLocation::Vertex, std::move(t.normals),
+    for (const auto& [name, field] : drawing->fields)
+        s.fields[name] = field;
+    s.setField(fields::kVertexNormal, {FieldLocation::Vertex, std::move(points.normals),
                                        "unit normal of the fitted spline (zero at cones)"});
-    s.setField(fields::kPatch, {FieldLocation::Face, std::move(t.patch),
-                                "the quadratic patch 12 f + l of the triangle"});
-    s.setField(fields::kMacroPatch, {FieldLocation::Face, std::move(t.macroPatch),
-                                     "the macro-patch (layout face) of the triangle"});
-    s.setField(fields::kPatchEdge,
-               {FieldLocation::Edge, std::move(t.patchEdge),
-                "1 patch boundary, 2 macro-patch boundary, 3 cut edge, 0 inside a patch"});
     s.setField(fields::kFitOffset,
                {FieldLocation::Vertex, std::move(offset),
                 "distance from the spline to the input triangle at the same parameter"});
-    s.setField(fields::kCone, {FieldLocation::Vertex, std::move(cone), "1 at a cone"});
     s.setCounter(counters::kTessellationFaces, s.mesh->faceCount());
     s.setCounter(counters::kTessellationSeconds, secondsSince(tessellationStart));
     s.setCounter(counters::kStageSeconds, fitSeconds);
@@ -1109,6 +1149,12 @@ void runVisibility(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kUnreliableBoundaryCusps, stats.unreliableCusps);
     s.setCounter(counters::kUncheckedCuspSteps, stats.uncheckedCuspSteps);
     s.setCounter(counters::kPropagatedChains, stats.propagatedChains);
+    s.setCounter(counters::kCuspPlacementSeconds, stats.secondsCusps);
+    s.setCounter(counters::kSamplingSeconds, stats.secondsSampling);
+    s.setCounter(counters::kIntersectionSeconds, stats.secondsIntersections);
+    s.setCounter(counters::kChainCuttingSeconds, stats.secondsChains);
+    s.setCounter(counters::kRayTestSeconds, stats.secondsRays);
+    s.setCounter(counters::kRuleCheckSeconds, stats.secondsChecks);
     s.setCounter(counters::kRayTests, static_cast<double>(stats.rays));
     s.setCounter(counters::kConflicts, static_cast<double>(graph.conflicts.size()));
     s.setCounter(counters::kVisibleLengthPx, graph.visibleLengthPixels());
@@ -1259,7 +1305,8 @@ Method makePowellSabinMethod() {
                             {}});
     m.addPhase({"factorization",
                 "Thin-plate and fitting Hessians assembled (eq. 8-10) and H factored once per "
-                "mesh (sparse Cholesky, CHOLMOD).",
+                "mesh (sparse Cholesky, CHOLMOD); the drawing tessellation welded once per "
+                "layout.",
                 runFactorization, checkFactorization});
     m.parameters.push_back({"tessellation-level",
                             "Tessellation level",

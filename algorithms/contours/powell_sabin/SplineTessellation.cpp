@@ -67,9 +67,9 @@ void evaluateVertex(const QuadraticBezier<Vec3>& patch, const Vec3& bary,
 
 } // namespace
 
-SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
-                                          const PowellSabinSpline& spline,
-                                          const SplineToWorld& toWorld) {
+TessellationPoints evaluateTessellationPoints(const SplineTessellation& previous,
+                                              const PowellSabinSpline& spline,
+                                              const SplineToWorld& toWorld) {
     const Index n = previous.mesh.vertexCount();
     if (static_cast<Index>(previous.vertexPatch.size()) != n)
         throw std::invalid_argument("reevaluateTessellation: the tessellation has no "
@@ -77,22 +77,23 @@ SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
     for (Index p : previous.vertexPatch)
         if (p < 0 || p >= static_cast<Index>(spline.patches.size()))
             throw std::invalid_argument("reevaluateTessellation: the spline has other patches");
-    std::vector<Vec3> positions(static_cast<size_t>(n));
-    SplineTessellation out;
+    TessellationPoints out;
+    out.positions.resize(static_cast<size_t>(n));
     out.normals.resize(static_cast<size_t>(n));
     tbb::parallel_for(Index(0), n, [&](Index v) {
         evaluateVertex(spline.patches[previous.vertexPatch[v]], previous.vertexPatchBarycentric[v],
-                       toWorld, positions[v], out.normals[v]);
+                       toWorld, out.positions[v], out.normals[v]);
     });
-    out.mesh = previous.mesh.withPositions(std::move(positions));
-    out.patch = previous.patch;
-    out.macroPatch = previous.macroPatch;
-    out.patchEdge = previous.patchEdge;
-    out.barycentric = previous.barycentric;
-    out.vertexMacroPatch = previous.vertexMacroPatch;
-    out.cornerBarycentric = previous.cornerBarycentric;
-    out.vertexPatch = previous.vertexPatch;
-    out.vertexPatchBarycentric = previous.vertexPatchBarycentric;
+    return out;
+}
+
+SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
+                                          const PowellSabinSpline& spline,
+                                          const SplineToWorld& toWorld) {
+    TessellationPoints points = evaluateTessellationPoints(previous, spline, toWorld);
+    SplineTessellation out = previous;
+    out.mesh = previous.mesh.withPositions(std::move(points.positions));
+    out.normals = std::move(points.normals);
     return out;
 }
 

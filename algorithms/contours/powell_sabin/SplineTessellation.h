@@ -55,4 +55,14 @@ SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
                                           const PowellSabinSpline& spline,
                                           const SplineToWorld& toWorld = {});
 
+// Only what changes with the spline: the positions and unit normals of the
+// vertices of `previous` (same checks as reevaluateTessellation).
+struct TessellationPoints {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+};
+TessellationPoints evaluateTessellationPoints(const SplineTessellation& previous,
+                                              const PowellSabinSpline& spline,
+                                              const SplineToWorld& toWorld = {});
+
 } // namespace contour::powell_sabin

@@ -5,12 +5,14 @@
 #include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace contour::powell_sabin {
 namespace {
@@ -237,11 +239,18 @@ void Builder::findCusps() {
         return true;
     };
 
+    // The patches' cusps are independent of each other: found in parallel,
+    // placed in order.
+    std::vector<PatchCuspResult> cuspsOf(spline_.patches.size());
+    tbb::parallel_for(size_t(0), spline_.patches.size(), [&](size_t p) {
+        if (!patchSegments[p].empty())
+            cuspsOf[p] = patchCusps(spline_.patches[p], tau_, o_.cusp);
+    });
     for (Index p = 0; p < static_cast<Index>(spline_.patches.size()); ++p) {
         if (patchSegments[p].empty())
             continue;
         const QuadraticBezier<Vec3>& patch = spline_.patches[p];
-        const PatchCuspResult found = patchCusps(patch, tau_, o_.cusp);
+        const PatchCuspResult& found = cuspsOf[static_cast<size_t>(p)];
         out_.stats.degenerateCuspPatches += found.degenerate;
         double side = 0.0;
         for (int i = 0; i < 3; ++i)
@@ -437,7 +446,8 @@ void Builder::evaluateStations(Polyline& poly) const {
 }
 
 void Builder::sample() {
-    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+    // Each chain is sampled on its own.
+    tbb::parallel_for(Index(0), static_cast<Index>(polys_.size()), [&](Index c) {
         Polyline& poly = polys_[c];
         std::vector<Station> st;
         for (Index k = 0; k < static_cast<Index>(poly.chain->links.size()); ++k)
@@ -446,7 +456,7 @@ void Builder::sample() {
             st.push_back({poly.length, kInvalidIndex});
         poly.stations = std::move(st);
         evaluateStations(poly);
-    }
+    });
 }
 
 // §4.2 image-space intersections, on the sampled chords (exact segment
@@ -779,32 +789,48 @@ void Builder::cutChains() {
 void Builder::rayTests() {
     ViewGraph& g = out_.graph;
     const Index patchCount = static_cast<Index>(spline_.patches.size());
-    Eigen::AlignedBox2d all;
+    // A uniform grid over the patches' image boxes, rebuilt per view (the
+    // fit moves every patch), as flat arrays: with tens of thousands of
+    // patches and a few hundred rays the build is the cost, not the rays.
     std::vector<Eigen::AlignedBox2d> boxes(spline_.patches.size());
-    for (Index p = 0; p < patchCount; ++p) {
+    tbb::parallel_for(Index(0), patchCount, [&](Index p) {
         for (const Vec3& c : spline_.patches[p].control)
             boxes[p].extend(c.head<2>());
-        all.extend(boxes[p]);
-    }
+    });
+    Eigen::AlignedBox2d all;
+    for (const Eigen::AlignedBox2d& box : boxes)
+        all.extend(box);
     const Vec2 size = all.isEmpty() ? Vec2(1, 1) : Vec2(all.sizes().cwiseMax(1e-300));
     const double cells = std::max(1.0, o_.gridCellsPerPatch * patchCount);
     const int nx =
         std::clamp(static_cast<int>(std::ceil(std::sqrt(cells * size.x() / size.y()))), 1, 4096);
     const int ny = std::clamp(static_cast<int>(std::ceil(cells / nx)), 1, 4096);
-    std::vector<std::vector<Index>> grid(static_cast<size_t>(nx) * ny);
     auto cellOf = [&](const Vec2& x, int& i, int& j) {
         i = std::clamp(static_cast<int>(std::floor((x.x() - all.min().x()) / size.x() * nx)), 0,
                        nx - 1);
         j = std::clamp(static_cast<int>(std::floor((x.y() - all.min().y()) / size.y() * ny)), 0,
                        ny - 1);
     };
+    // Cell c holds cellPatches[cellStart[c] .. cellStart[c + 1]).
+    std::vector<Index> cellStart(static_cast<size_t>(nx) * ny + 1, 0);
+    std::vector<std::array<int, 4>> span(spline_.patches.size());
     for (Index p = 0; p < patchCount; ++p) {
-        int i0, j0, i1, j1;
-        cellOf(boxes[p].min(), i0, j0);
-        cellOf(boxes[p].max(), i1, j1);
-        for (int j = j0; j <= j1; ++j)
-            for (int i = i0; i <= i1; ++i)
-                grid[static_cast<size_t>(j) * nx + i].push_back(p);
+        std::array<int, 4>& r = span[static_cast<size_t>(p)];
+        cellOf(boxes[p].min(), r[0], r[1]);
+        cellOf(boxes[p].max(), r[2], r[3]);
+        for (int j = r[1]; j <= r[3]; ++j)
+            for (int i = r[0]; i <= r[2]; ++i)
+                ++cellStart[static_cast<size_t>(j) * nx + i + 1];
+    }
+    for (size_t c = 1; c < cellStart.size(); ++c)
+        cellStart[c] += cellStart[c - 1];
+    std::vector<Index> cellPatches(static_cast<size_t>(cellStart.back()));
+    std::vector<Index> fill(cellStart.begin(), cellStart.end() - 1);
+    for (Index p = 0; p < patchCount; ++p) {
+        const std::array<int, 4>& r = span[static_cast<size_t>(p)];
+        for (int j = r[1]; j <= r[3]; ++j)
+            for (int i = r[0]; i <= r[2]; ++i)
+                cellPatches[static_cast<size_t>(fill[static_cast<size_t>(j) * nx + i]++)] = p;
     }
     out_.raySample.assign(g.chains.size(), kInvalidIndex);
     rayOrigin_.assign(g.chains.size(), Vec3::Zero());
@@ -835,10 +861,11 @@ void Builder::rayTests() {
         if (all.contains(p.head<2>())) {
             int i, j;
             cellOf(p.head<2>(), i, j);
-            for (Index q : grid[static_cast<size_t>(j) * nx + i])
-                qi += hitsInFront(spline_.patches[q], tau_, p.head<2>(), p.z(), o_.ray);
+            const size_t cell = static_cast<size_t>(j) * nx + i;
+            for (Index k = cellStart[cell]; k < cellStart[cell + 1]; ++k)
+                qi += hitsInFront(spline_.patches[cellPatches[static_cast<size_t>(k)]], tau_,
+                                  p.head<2>(), p.z(), o_.ray);
         }
-        ++g.rayTests;
         chain.qi = qi;
         chain.rayQi = qi;
         chain.decidedBy = VisibilityRule::RayTest;
@@ -847,10 +874,11 @@ void Builder::rayTests() {
     };
     std::vector<Index> queue;
     for (Index c = 0; c < static_cast<Index>(g.chains.size()); ++c)
-        if (g.chains[c].closed || g.chains[c].lengthPixels >= o_.minRayChainPixels) {
-            castRay(c);
+        if (g.chains[c].closed || g.chains[c].lengthPixels >= o_.minRayChainPixels)
             queue.push_back(c);
-        }
+    // Each ray writes only its own chain's fields.
+    tbb::parallel_for(size_t(0), queue.size(), [&](size_t k) { castRay(queue[k]); });
+    g.rayTests += static_cast<long long>(queue.size());
     propagate(queue);
     // Components of short chains only: a ray on the longest chain left.
     std::vector<Index> order(g.chains.size());
@@ -862,6 +890,7 @@ void Builder::rayTests() {
     for (Index c : order)
         if (g.chains[c].qi < 0) {
             castRay(c);
+            ++g.rayTests;
             queue.assign(1, c);
             propagate(queue);
         }
