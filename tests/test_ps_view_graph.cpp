@@ -542,10 +542,52 @@ private slots:
               totalCusps, totalT, chainsChecked, chainsSkipped);
     }
 
+    void tJunctionsAreCrossingsOfTheCurves() {
+        // Two branches closer than the chord tolerance can have chords that
+        // cross where the curves do not: such crossings are left out
+        // (counted), and every T-junction lies on both curves. On spot's 26
+        // views, accepting every chord crossing puts some T-junctions off
+        // the curves.
+        const TriangleMesh spot =
+            readMesh(std::string(CONTOUR_SOURCE_DIR) + "/samples/spot_control_mesh.obj")
+                .triangulate();
+        const Setup setup = setupOf(spot);
+        SplineViewGraphOptions everyChordCrossing;
+        everyChordCrossing.crossingResidualPixels = 1e9;
+        long long chordOnly = 0, offTheCurves = 0, tJunctions = 0;
+        const auto apart = [](const Camera& c, const ViewNode& n) {
+            return (c.project(n.position).pixel - c.project(n.nearPoint).pixel).norm();
+        };
+        for (const Camera& camera : Camera::views26(spot.boundingBox(), Viewport{800, 600})) {
+            const View exact = viewOf(setup, camera);
+            chordOnly += exact.result.stats.chordOnlyCrossings;
+            for (const ViewNode& n : exact.result.graph.nodes)
+                if (n.type == ViewNodeType::ImageIntersection) {
+                    ++tJunctions;
+                    QVERIFY2(apart(camera, n) <= 1e-5,
+                             qPrintable(QString::number(apart(camera, n))));
+                }
+            const View loose = viewOf(setup, camera, everyChordCrossing);
+            QCOMPARE(loose.result.stats.chordOnlyCrossings, Index(0));
+            for (const ViewNode& n : loose.result.graph.nodes)
+                offTheCurves +=
+                    n.type == ViewNodeType::ImageIntersection && apart(camera, n) > 1e-5;
+        }
+        qInfo("spot, 26 views: %lld T-junctions, %lld chord crossings left out; %lld T-junctions "
+              "off the curves when every chord crossing is kept",
+              tJunctions, chordOnly, offTheCurves);
+        QVERIFY(chordOnly > 0);
+        QVERIFY(offTheCurves > 0);
+    }
+
     void badOptionsThrow() {
         const Setup setup = setupOf(makeSphere(1.0, 10).triangulate());
         SplineViewGraphOptions o;
         o.maxChordPixels = 0.0;
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 viewOf(setup, cameraAt(Vec3(0, 0, 5), Vec3(0, 1, 0)), o));
+        o = {};
+        o.crossingResidualPixels = 0.0;
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
                                  viewOf(setup, cameraAt(Vec3(0, 0, 5), Vec3(0, 1, 0)), o));
         o = {};

@@ -547,6 +547,8 @@ inline constexpr CounterName kUncheckedCuspSteps{
     "unchecked-cusp-steps", "uncertain boundary cusps whose branches differ by other than 1"};
 inline constexpr CounterName kPropagatedChains{"propagated-chains",
                                                "chains given their QI by propagation"};
+inline constexpr CounterName kChordOnlyCrossings{
+    "chord-only-crossings", "crossings of the sampled chords the curves do not have"};
 // Its steps' seconds, in the order they run.
 inline constexpr CounterName kCuspPlacementSeconds{"cusp-placement-seconds",
                                                    "seconds placing cusps on the chains"};

@@ -1149,6 +1149,7 @@ void runVisibility(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kUnreliableBoundaryCusps, stats.unreliableCusps);
     s.setCounter(counters::kUncheckedCuspSteps, stats.uncheckedCuspSteps);
     s.setCounter(counters::kPropagatedChains, stats.propagatedChains);
+    s.setCounter(counters::kChordOnlyCrossings, static_cast<double>(stats.chordOnlyCrossings));
     s.setCounter(counters::kCuspPlacementSeconds, stats.secondsCusps);
     s.setCounter(counters::kSamplingSeconds, stats.secondsSampling);
     s.setCounter(counters::kIntersectionSeconds, stats.secondsIntersections);
@@ -1186,7 +1187,21 @@ std::vector<InvariantCheck> checkVisibility(const PhaseContext& ctx, const Snaps
                 chain.decidedBy != VisibilityRule::RayTest && rays.violations++ == 0)
                 rays.firstExample = "chain " + std::to_string(c);
         }
-    return {decided, rays};
+    // §4.2 T-junctions are crossings of the curves, not of their chords.
+    InvariantCheck crossings{"every T-junction lies on both curves (1e-5 px apart at most)", 0, ""};
+    if (s.viewGraph)
+        for (size_t n = 0; n < s.viewGraph->nodes.size(); ++n) {
+            const ViewNode& node = s.viewGraph->nodes[n];
+            if (node.type != ViewNodeType::ImageIntersection)
+                continue;
+            const double apart =
+                (ctx.camera.project(node.position).pixel - ctx.camera.project(node.nearPoint).pixel)
+                    .norm();
+            if (!(apart <= 1e-5) && crossings.violations++ == 0)
+                crossings.firstExample =
+                    "node " + std::to_string(n) + ": " + std::to_string(apart) + " px apart";
+        }
+    return {decided, rays, crossings};
 }
 
 } // namespace

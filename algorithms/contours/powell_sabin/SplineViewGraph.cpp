@@ -47,6 +47,9 @@ void checkOptions(const SplineViewGraphOptions& o) {
         throw std::invalid_argument("buildSplineViewGraph: nodeMergeParameter must be in [0, 0.5)");
     if (o.crossingNewtonSteps < 0)
         throw std::invalid_argument("buildSplineViewGraph: crossingNewtonSteps must be >= 0");
+    if (!positive(o.crossingResidualPixels))
+        throw std::invalid_argument(
+            "buildSplineViewGraph: crossingResidualPixels must be positive");
     if (!nonNegative(o.coneCrossingPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: coneCrossingPixels must be non-negative");
@@ -515,7 +518,11 @@ void Builder::findCrossings() {
             if (!poly.closed && poly.stations[e].node != kInvalidIndex &&
                 out_.graph.nodes[poly.stations[e].node].type == ViewNodeType::Bifurcation)
                 cones.push_back(poly.pixel[e]);
-    std::vector<std::array<double, 4>> seen; // (polyline, s, polyline, s) of each crossing
+    std::vector<std::array<double, 4>> seen;   // (polyline, s, polyline, s) of each chord crossing
+    std::vector<std::array<double, 4>> onBoth; // the same after Newton, on both curves
+    const auto pixelOf = [&](const Vec3& p) {
+        return camera_.project(transform_.invert(p)).pixel;
+    };
     for (const ImageCrossing& x : found.crossings) {
         if (ignore(x.first, x.second))
             continue;
@@ -549,26 +556,93 @@ void Builder::findCrossings() {
         seen.push_back(key);
         // The chords cross within the chord error of the curves: Newton on
         // p_a(s_a).xy = p_b(s_b).xy (transformed xy is an affine image of
-        // the pixels) moves the node onto both curves, kept inside the two
-        // chords' parameter ranges.
+        // the pixels) moves the node onto both curves, within the two chords
+        // and their neighbours (the curves' crossing can lie just past a
+        // chord's end).
         const auto [la, ha] = chordRange(x.first);
         const auto [lb, hb] = chordRange(x.second);
-        ChainPoint a = evaluate(*pa.chain, sa);
-        ChainPoint b = evaluate(*pb.chain, sb);
-        for (int it = 0; it < o_.crossingNewtonSteps; ++it) {
-            Eigen::Matrix2d jac;
-            jac << a.tangent.head<2>(), -b.tangent.head<2>();
-            const Vec2 step = jac.fullPivLu().solve(Vec2(b.p.head<2>() - a.p.head<2>()));
-            if (!step.allFinite())
-                break;
-            const double na = sa + step.x(), nb = sb + step.y();
-            if (na < la || na > ha || nb < lb || nb > hb)
-                break;
-            sa = na;
-            sb = nb;
-            a = evaluate(*pa.chain, sa);
-            b = evaluate(*pb.chain, sb);
+        ChainPoint a, b;
+        // Newton within the chords, or (widen) also their neighbours.
+        const auto newton = [&](double& ta, double& tb, bool widen) {
+            const double wa = widen ? ha - la : 0.0, wb = widen ? hb - lb : 0.0;
+            const double loA = std::max(0.0, la - wa), hiA = std::min(pa.length, ha + wa);
+            const double loB = std::max(0.0, lb - wb), hiB = std::min(pb.length, hb + wb);
+            a = evaluate(*pa.chain, ta);
+            b = evaluate(*pb.chain, tb);
+            for (int it = 0; it < o_.crossingNewtonSteps; ++it) {
+                Eigen::Matrix2d jac;
+                jac << a.tangent.head<2>(), -b.tangent.head<2>();
+                const Vec2 step = jac.fullPivLu().solve(Vec2(b.p.head<2>() - a.p.head<2>()));
+                if (!step.allFinite())
+                    break;
+                const double na = ta + step.x(), nb = tb + step.y();
+                if (na < loA || na > hiA || nb < loB || nb > hiB)
+                    break;
+                ta = na;
+                tb = nb;
+                a = evaluate(*pa.chain, ta);
+                b = evaluate(*pb.chain, tb);
+            }
+            return (pixelOf(a.p) - pixelOf(b.p)).norm();
+        };
+        const double chordS0 = sa, chordT0 = sb;
+        const double residual = newton(sa, sb, false);
+        if (o_.crossingNewtonSteps > 0 && residual > o_.crossingResidualPixels) {
+            // Two curves closer than the chord error can have chords that
+            // cross where the curves do not (or cross elsewhere): the chords
+            // are cut into finer chords of the exact curves, and a crossing
+            // of those must take Newton onto both curves.
+            constexpr int kPieces = 8;
+            bool onCurves = false;
+            for (int i = 0; i < kPieces && !onCurves; ++i) {
+                const double a0 = la + (ha - la) * i / kPieces,
+                             a1 = la + (ha - la) * (i + 1) / kPieces;
+                const Vec2 qa0 = pixelOf(evaluate(*pa.chain, a0).p);
+                const Vec2 qa1 = pixelOf(evaluate(*pa.chain, a1).p);
+                for (int j = 0; j < kPieces && !onCurves; ++j) {
+                    const double b0 = lb + (hb - lb) * j / kPieces,
+                                 b1 = lb + (hb - lb) * (j + 1) / kPieces;
+                    const Vec2 qb0 = pixelOf(evaluate(*pb.chain, b0).p);
+                    const Vec2 qb1 = pixelOf(evaluate(*pb.chain, b1).p);
+                    const Vec2 da = qa1 - qa0, db = qb1 - qb0, w = qb0 - qa0;
+                    const double d = cross2(da, db);
+                    if (d == 0.0)
+                        continue;
+                    const double u = cross2(w, db) / d, v = cross2(w, da) / d;
+                    if (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0)
+                        continue;
+                    double ta = a0 + u * (a1 - a0), tb = b0 + v * (b1 - b0);
+                    if (newton(ta, tb, false) <= o_.crossingResidualPixels) {
+                        sa = ta;
+                        sb = tb;
+                        onCurves = true;
+                    }
+                }
+            }
+            if (!onCurves) {
+                double ta = chordS0, tb = chordT0;
+                if (newton(ta, tb, true) <= o_.crossingResidualPixels) {
+                    sa = ta;
+                    sb = tb;
+                    onCurves = true;
+                }
+            }
+            if (!onCurves) {
+                ++out_.stats.chordOnlyCrossings;
+                continue;
+            }
         }
+        // The same crossing of the curves found from two pairs of chords.
+        bool again = false;
+        for (const std::array<double, 4>& old : onBoth)
+            again = again ||
+                    (old[0] == ca && old[2] == cb && std::abs(old[1] - sa) <= 1e-9 &&
+                     std::abs(old[3] - sb) <= 1e-9) ||
+                    (old[0] == cb && old[2] == ca && std::abs(old[1] - sb) <= 1e-9 &&
+                     std::abs(old[3] - sa) <= 1e-9);
+        if (again)
+            continue;
+        onBoth.push_back({double(ca), sa, double(cb), sb});
         sa = wrapped(pa, sa);
         sb = wrapped(pb, sb);
         const bool aNear = a.p.z() < b.p.z();

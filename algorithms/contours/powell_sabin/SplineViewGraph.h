@@ -85,6 +85,9 @@ struct SplineViewGraphOptions {
     // Newton steps that move a crossing of two chords onto the two curves
     // (0: the chords' crossing, within maxChordPixels of the curves).
     int crossingNewtonSteps = 8;
+    // A chord crossing is a T-junction only where Newton brings both curves
+    // within this distance (pixels) of each other.
+    double crossingResidualPixels = 1e-6;
     // Crossings of the sampled chords closer than this (pixels) to a cone
     // point are the loops meeting at the cone (§4.2), not T-junctions: they
     // are left out and counted. Not from the paper.
@@ -128,6 +131,7 @@ struct SplineViewGraphStats {
     Index unreliableTJunctions = 0; // near surface's fold side undetermined
     Index imageOverlaps = 0;        // collinear overlapping chords (not split)
     Index coneCrossings = 0;        // chord crossings at a cone point, left out
+    Index chordOnlyCrossings = 0;   // chord crossings the exact curves do not have, left out
     Index conePoints = 0;
     Index boundaryEnds = 0;
     Index curveEnds = 0;
