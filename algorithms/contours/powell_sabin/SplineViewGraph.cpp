@@ -244,10 +244,56 @@ void Builder::findCusps() {
 
     // The patches' cusps are independent of each other: found in parallel,
     // placed in order.
+    // The closest point of every segment of the patch to a cusp: a coarse
+    // scan, then golden-section refinement around the best sample.
+    struct Located {
+        Index segment = kInvalidIndex;
+        double t = 0.0, distance = std::numeric_limits<double>::infinity();
+    };
+    const auto locate = [&](Index p, const PatchCusp& cusp) {
+        Located best;
+        for (Index si : patchSegments[p]) {
+            const ContourSegment& seg = segments_[si];
+            auto dist = [&](double t) {
+                return (seg.curve.at(t) - cusp.uv).squaredNorm();
+            };
+            constexpr int kScan = 64;
+            int bestJ = 0;
+            double bd = std::numeric_limits<double>::infinity();
+            for (int j = 0; j <= kScan; ++j) {
+                const double d = dist(seg.t0 + (seg.t1 - seg.t0) * j / kScan);
+                if (d < bd) {
+                    bd = d;
+                    bestJ = j;
+                }
+            }
+            double a = seg.t0 + (seg.t1 - seg.t0) * std::max(0, bestJ - 1) / kScan;
+            double b = seg.t0 + (seg.t1 - seg.t0) * std::min(kScan, bestJ + 1) / kScan;
+            const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+            for (int it = 0; it < 80; ++it) {
+                const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+                if (dist(x1) < dist(x2))
+                    b = x2;
+                else
+                    a = x1;
+            }
+            const double t = 0.5 * (a + b);
+            const double d = std::sqrt(dist(t));
+            if (d < best.distance)
+                best = {si, t, d};
+        }
+        return best;
+    };
+    // The patches' cusps and their places are independent of each other:
+    // found in parallel, placed in order.
     std::vector<PatchCuspResult> cuspsOf(spline_.patches.size());
-    tbb::parallel_for(size_t(0), spline_.patches.size(), [&](size_t p) {
-        if (!patchSegments[p].empty())
-            cuspsOf[p] = patchCusps(spline_.patches[p], tau_, o_.cusp);
+    std::vector<std::vector<Located>> locatedOf(spline_.patches.size());
+    tbb::parallel_for(Index(0), static_cast<Index>(spline_.patches.size()), [&](Index p) {
+        if (patchSegments[p].empty())
+            return;
+        cuspsOf[p] = patchCusps(spline_.patches[p], tau_, o_.cusp);
+        for (const PatchCusp& cusp : cuspsOf[p].cusps)
+            locatedOf[p].push_back(locate(p, cusp));
     });
     for (Index p = 0; p < static_cast<Index>(spline_.patches.size()); ++p) {
         if (patchSegments[p].empty())
@@ -258,44 +304,11 @@ void Builder::findCusps() {
         double side = 0.0;
         for (int i = 0; i < 3; ++i)
             side = std::max(side, (patch.domain[(i + 1) % 3] - patch.domain[i]).norm());
-        for (const PatchCusp& cusp : found.cusps) {
-            // The closest point of every segment of the patch: a coarse scan,
-            // then golden-section refinement around the best sample.
-            Index bestSeg = kInvalidIndex;
-            double bestT = 0.0, bestD = std::numeric_limits<double>::infinity();
-            for (Index si : patchSegments[p]) {
-                const ContourSegment& seg = segments_[si];
-                auto dist = [&](double t) {
-                    return (seg.curve.at(t) - cusp.uv).squaredNorm();
-                };
-                constexpr int kScan = 64;
-                int best = 0;
-                double bd = std::numeric_limits<double>::infinity();
-                for (int j = 0; j <= kScan; ++j) {
-                    const double d = dist(seg.t0 + (seg.t1 - seg.t0) * j / kScan);
-                    if (d < bd) {
-                        bd = d;
-                        best = j;
-                    }
-                }
-                double a = seg.t0 + (seg.t1 - seg.t0) * std::max(0, best - 1) / kScan;
-                double b = seg.t0 + (seg.t1 - seg.t0) * std::min(kScan, best + 1) / kScan;
-                const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-                for (int it = 0; it < 80; ++it) {
-                    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
-                    if (dist(x1) < dist(x2))
-                        b = x2;
-                    else
-                        a = x1;
-                }
-                const double t = 0.5 * (a + b);
-                const double d = std::sqrt(dist(t));
-                if (d < bestD) {
-                    bestD = d;
-                    bestT = t;
-                    bestSeg = si;
-                }
-            }
+        for (size_t k = 0; k < found.cusps.size(); ++k) {
+            const PatchCusp& cusp = found.cusps[k];
+            const Located& at = locatedOf[static_cast<size_t>(p)][k];
+            const Index bestSeg = at.segment;
+            const double bestT = at.t, bestD = at.distance;
             if (bestSeg == kInvalidIndex || bestD > o_.cuspOnSegmentTolerance * side) {
                 ++out_.stats.unplacedCusps;
                 continue;
@@ -593,18 +606,19 @@ void Builder::findCrossings() {
             // are cut into finer chords of the exact curves, and a crossing
             // of those must take Newton onto both curves.
             constexpr int kPieces = 8;
+            std::array<Vec2, kPieces + 1> qa, qb;
+            for (int i = 0; i <= kPieces; ++i) {
+                qa[i] = pixelOf(evaluate(*pa.chain, la + (ha - la) * i / kPieces).p);
+                qb[i] = pixelOf(evaluate(*pb.chain, lb + (hb - lb) * i / kPieces).p);
+            }
             bool onCurves = false;
             for (int i = 0; i < kPieces && !onCurves; ++i) {
                 const double a0 = la + (ha - la) * i / kPieces,
                              a1 = la + (ha - la) * (i + 1) / kPieces;
-                const Vec2 qa0 = pixelOf(evaluate(*pa.chain, a0).p);
-                const Vec2 qa1 = pixelOf(evaluate(*pa.chain, a1).p);
                 for (int j = 0; j < kPieces && !onCurves; ++j) {
                     const double b0 = lb + (hb - lb) * j / kPieces,
                                  b1 = lb + (hb - lb) * (j + 1) / kPieces;
-                    const Vec2 qb0 = pixelOf(evaluate(*pb.chain, b0).p);
-                    const Vec2 qb1 = pixelOf(evaluate(*pb.chain, b1).p);
-                    const Vec2 da = qa1 - qa0, db = qb1 - qb0, w = qb0 - qa0;
+                    const Vec2 da = qa[i + 1] - qa[i], db = qb[j + 1] - qb[j], w = qb[j] - qa[i];
                     const double d = cross2(da, db);
                     if (d == 0.0)
                         continue;
