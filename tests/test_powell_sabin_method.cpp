@@ -257,7 +257,7 @@ private slots:
         powell_sabin::PowellSabinSpline other = *state->spline;
         other.patches.resize(other.patches.size() / 2);
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
-                                 powell_sabin::reevaluateTessellation(fresh, other, toWorld));
+                                 powell_sabin::evaluateTessellationPoints(fresh, other, toWorld));
     }
 
     void shortChainsTakeTheirQiByPropagation() {

@@ -72,11 +72,11 @@ TessellationPoints evaluateTessellationPoints(const SplineTessellation& previous
                                               const SplineToWorld& toWorld) {
     const Index n = previous.mesh.vertexCount();
     if (static_cast<Index>(previous.vertexPatch.size()) != n)
-        throw std::invalid_argument("reevaluateTessellation: the tessellation has no "
+        throw std::invalid_argument("evaluateTessellationPoints: the tessellation has no "
                                     "evaluation sites");
     for (Index p : previous.vertexPatch)
         if (p < 0 || p >= static_cast<Index>(spline.patches.size()))
-            throw std::invalid_argument("reevaluateTessellation: the spline has other patches");
+            throw std::invalid_argument("evaluateTessellationPoints: the spline has other patches");
     TessellationPoints out;
     out.positions.resize(static_cast<size_t>(n));
     out.normals.resize(static_cast<size_t>(n));
@@ -84,16 +84,6 @@ TessellationPoints evaluateTessellationPoints(const SplineTessellation& previous
         evaluateVertex(spline.patches[previous.vertexPatch[v]], previous.vertexPatchBarycentric[v],
                        toWorld, out.positions[v], out.normals[v]);
     });
-    return out;
-}
-
-SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
-                                          const PowellSabinSpline& spline,
-                                          const SplineToWorld& toWorld) {
-    TessellationPoints points = evaluateTessellationPoints(previous, spline, toWorld);
-    SplineTessellation out = previous;
-    out.mesh = previous.mesh.withPositions(std::move(points.positions));
-    out.normals = std::move(points.normals);
     return out;
 }
 

@@ -25,7 +25,7 @@ struct SplineTessellation {
     // macro-patch (a welded vertex has other ones in its other macro-patches).
     std::vector<std::array<Vec3, 3>> cornerBarycentric;
     // Per vertex: a patch it lies in and its barycentric coordinates there,
-    // where reevaluateTessellation evaluates it.
+    // where evaluateTessellationPoints evaluates it.
     std::vector<Index> vertexPatch;
     std::vector<Vec3> vertexPatchBarycentric;
 };
@@ -46,17 +46,11 @@ SplineTessellation tessellateSpline(const PowellSabinSpline& spline, const ConeL
                                     int level, const SplineToWorld& toWorld = {});
 
 // The tessellation of another spline on the same layout (the next view's
-// fit): the connectivity and labels of `previous`, which tessellateSpline
-// made for that layout, with the positions and normals evaluated again (in
-// parallel). The welding by layout position is view-independent, so a new
-// view pays only the evaluation. Throws std::invalid_argument when the
-// spline has other patches than `previous` was made for.
-SplineTessellation reevaluateTessellation(const SplineTessellation& previous,
-                                          const PowellSabinSpline& spline,
-                                          const SplineToWorld& toWorld = {});
-
-// Only what changes with the spline: the positions and unit normals of the
-// vertices of `previous` (same checks as reevaluateTessellation).
+// fit) keeps the connectivity and labels of `previous`, which
+// tessellateSpline made for that layout: the welding by layout position is
+// view-independent, so a new view evaluates only the positions and unit
+// normals of the vertices (in parallel). Throws std::invalid_argument when
+// the spline has other patches than `previous` was made for.
 struct TessellationPoints {
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;

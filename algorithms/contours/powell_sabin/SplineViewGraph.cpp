@@ -242,8 +242,6 @@ void Builder::findCusps() {
         return true;
     };
 
-    // The patches' cusps are independent of each other: found in parallel,
-    // placed in order.
     // The closest point of every segment of the patch to a cusp: a coarse
     // scan, then golden-section refinement around the best sample.
     struct Located {
@@ -606,31 +604,37 @@ void Builder::findCrossings() {
             // are cut into finer chords of the exact curves, and a crossing
             // of those must take Newton onto both curves.
             constexpr int kPieces = 8;
-            std::array<Vec2, kPieces + 1> qa, qb;
-            for (int i = 0; i <= kPieces; ++i) {
-                qa[i] = pixelOf(evaluate(*pa.chain, la + (ha - la) * i / kPieces).p);
-                qb[i] = pixelOf(evaluate(*pb.chain, lb + (hb - lb) * i / kPieces).p);
+            std::array<ImageSegment, 2 * kPieces> pieces;
+            const auto at = [](double lo, double hi, int i) {
+                return lo + (hi - lo) * i / kPieces;
+            };
+            for (int i = 0; i < kPieces; ++i) {
+                pieces[i] = {pixelOf(evaluate(*pa.chain, at(la, ha, i)).p),
+                             pixelOf(evaluate(*pa.chain, at(la, ha, i + 1)).p)};
+                pieces[kPieces + i] = {pixelOf(evaluate(*pb.chain, at(lb, hb, i)).p),
+                                       pixelOf(evaluate(*pb.chain, at(lb, hb, i + 1)).p)};
             }
+            const ImageIntersectionResult finer = imageIntersections(pieces, [](Index i, Index j) {
+                return (i < kPieces) == (j < kPieces); // pieces of one curve
+            });
             bool onCurves = false;
-            for (int i = 0; i < kPieces && !onCurves; ++i) {
-                const double a0 = la + (ha - la) * i / kPieces,
-                             a1 = la + (ha - la) * (i + 1) / kPieces;
-                for (int j = 0; j < kPieces && !onCurves; ++j) {
-                    const double b0 = lb + (hb - lb) * j / kPieces,
-                                 b1 = lb + (hb - lb) * (j + 1) / kPieces;
-                    const Vec2 da = qa[i + 1] - qa[i], db = qb[j + 1] - qb[j], w = qb[j] - qa[i];
-                    const double d = cross2(da, db);
-                    if (d == 0.0)
-                        continue;
-                    const double u = cross2(w, db) / d, v = cross2(w, da) / d;
-                    if (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0)
-                        continue;
-                    double ta = a0 + u * (a1 - a0), tb = b0 + v * (b1 - b0);
-                    if (newton(ta, tb, false) <= o_.crossingResidualPixels) {
-                        sa = ta;
-                        sb = tb;
-                        onCurves = true;
-                    }
+            for (const ImageCrossing& y : finer.crossings) {
+                const Index i = y.first, j = y.second - kPieces;
+                const auto along = [&](const ImageSegment& piece) {
+                    const Vec2 d = piece.b - piece.a;
+                    const double len2 = d.squaredNorm();
+                    return len2 > 0.0 ? std::clamp((y.point - piece.a).dot(d) / len2, 0.0, 1.0)
+                                      : 0.0;
+                };
+                double ta =
+                    at(la, ha, static_cast<int>(i)) + along(pieces[i]) * (ha - la) / kPieces;
+                double tb =
+                    at(lb, hb, static_cast<int>(j)) + along(pieces[y.second]) * (hb - lb) / kPieces;
+                if (newton(ta, tb, false) <= o_.crossingResidualPixels) {
+                    sa = ta;
+                    sb = tb;
+                    onCurves = true;
+                    break;
                 }
             }
             if (!onCurves) {
