@@ -185,6 +185,23 @@ private slots:
         compareViews(cage, views, 64, 4, name.toStdString());
     }
 
+    // pawn's neck, seen from the protocol's views 1, 4, 7, ...: the contour
+    // makes a swallowtail (two cusps, one crossing) whose tip leaves a face
+    // through the edge opposite its odd corner and comes back, so that edge
+    // crosses g = 0 twice between two of the initialization's samples.
+    // Cusp detection splits it (§6.1's sign-crossing split) and finds the
+    // cusp beyond it; without the split the cusp was lost and propagation
+    // was one off on every chain of the drawing (25 conflicts per view).
+    void doubleCrossingOfAnEdge() {
+        const auto cage = sharedMesh("pawn");
+        if (!cage)
+            QSKIP("../shared/meshes/pawn.obj is absent");
+        const std::vector<Camera> all = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+        const MethodRun detection = run("consistent", cage, all[1], {}, "cusp-detection");
+        QVERIFY(detection.last().counter(counters::kCuspDoubleCrossingSplits) > 0.0);
+        compareViews(cage, {all[1], all[4], all[7], all[10]}, 64, 4);
+    }
+
     // The near-face test of §8.1 at every contour vertex (the switch off)
     // makes curtain folds at zig-zags of the polyline: more folds than cusps.
     void nearFaceEverywhereOverCounts() {

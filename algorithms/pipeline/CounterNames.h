@@ -102,6 +102,8 @@ inline constexpr CounterName kCuspSearchEvaluations{"cusp-search-evaluations",
                                                     "cusp search evaluations"};
 inline constexpr CounterName kCuspSignChangesAcrossAGap{"cusp-sign-changes-across-a-gap",
                                                         "cusp sign changes across a gap"};
+inline constexpr CounterName kCuspDoubleCrossingSplits{"cusp-double-crossing-splits",
+                                                       "double crossings of g = 0 split"};
 inline constexpr CounterName kCuspSignChangesByAJump{"cusp-sign-changes-by-a-jump",
                                                      "cusp sign changes by a jump"};
 

@@ -4,7 +4,8 @@
 //
 //   bench_topology [--meshes-dir DIR] [--mesh NAME]... [--all] [--shape NAME:RES]...
 //                  [--views N] [--samples N | --sample-budget S] [--set PARAM=VALUE]...
-//                  [--out summary.csv] [--per-view views.csv] [--threads N]
+//                  [--out summary.csv] [--per-view views.csv] [--cusps cusps.csv]
+//                  [--threads N]
 //
 // Per view, the consistent method runs to the end and its final view graph
 // is compared with reference/DenseGroundTruth (the g = 0 set of the same smooth
@@ -78,6 +79,9 @@ struct ViewFigures {
     int folds = 0, foldsAtCusps = 0, fallbackFolds = 0;
     int tJunctions = 0, truthCrossings = 0, halfCrossings = 0, curveCrossings = 0;
     int conflicts = 0, ambiguousChains = 0;
+    // Image positions of the method's cusp vertices and of the oracle's
+    // cusps (for --cusps).
+    std::vector<Vec2> methodCuspPixels, truthCuspPixels;
     bool unsettled() const { return truthCusps != halfCusps || truthCrossings != halfCrossings; }
 };
 
@@ -132,6 +136,11 @@ ViewFigures runView(const Method& method, const Snapshot& input, const Camera& c
     f.methodCusps = static_cast<int>(last.counter(counters::kCusps, 0.0));
     if (last.viewGraph)
         readGraph(last, f);
+    if (const std::vector<int>* cusp =
+            fieldValues<int>(last, fields::kCusp, FieldLocation::Vertex, last.mesh->vertexCount()))
+        for (Index v = 0; v < last.mesh->vertexCount(); ++v)
+            if ((*cusp)[static_cast<size_t>(v)] != 0)
+                f.methodCuspPixels.push_back(camera.project(last.mesh->position(v)).pixel);
     // Crossings bounding a sub-pixel loop are left out of every count alike:
     // the graph flags them by t-junction-min-loop (0 in the paper preset).
     const double minLoop = parameters.getDouble("t-junction-min-loop");
@@ -143,6 +152,8 @@ ViewFigures runView(const Method& method, const Snapshot& input, const Camera& c
     f.truthLoops = static_cast<int>(t.loops.size());
     f.truthCusps = static_cast<int>(t.cusps.size());
     f.halfCusps = static_cast<int>(h.cusps.size());
+    for (const GroundTruthCusp& cusp : t.cusps)
+        f.truthCuspPixels.push_back(camera.project(cusp.position).pixel);
     f.truthCrossings = imageCrossings(t, camera, minLoop);
     f.halfCrossings = imageCrossings(h, camera, minLoop);
     const TopologyComparison c = compareTopology(t, last, truth.surfacePtr(), &camera);
@@ -257,6 +268,18 @@ std::string viewRow(const std::string& mesh, int view, const ViewFigures& v) {
     return o.str();
 }
 
+std::string cuspRows(const std::string& mesh, int view, const ViewFigures& v) {
+    std::ostringstream o;
+    const auto rows = [&](const char* source, const std::vector<Vec2>& pixels) {
+        for (const Vec2& p : pixels)
+            o << csvEscape(mesh) << ',' << view << ',' << source << ',' << p.x() << ',' << p.y()
+              << '\n';
+    };
+    rows("method", v.methodCuspPixels);
+    rows("oracle", v.truthCuspPixels);
+    return o.str();
+}
+
 void printSummary(const MeshFigures& m) {
     if (!m.skipped.empty()) {
         std::printf("%-22s skipped: %s\n", m.name.c_str(), m.skipped.c_str());
@@ -298,7 +321,7 @@ int main(int argc, char** argv) {
     bool all = false;
     int views = 26, samples = 0, threads = 0;
     double budget = 8e6;
-    std::string outPath, perViewPath;
+    std::string outPath, perViewPath, cuspsPath;
     app.add_option("--meshes-dir", meshesDir, "Folder of the meshes");
     app.add_option("--mesh", meshes, "Mesh name (file name without extension), repeatable");
     app.add_flag("--all", all, "Every .obj of the meshes folder");
@@ -311,6 +334,9 @@ int main(int argc, char** argv) {
     app.add_option("--set", sets, "Method parameter PARAM=VALUE, repeatable");
     app.add_option("--out", outPath, "Summary CSV, one row per mesh");
     app.add_option("--per-view", perViewPath, "CSV, one row per view");
+    app.add_option("--cusps", cuspsPath,
+                   "CSV, one row per cusp: the method's cusp vertices and the oracle's cusps, "
+                   "in image pixels");
     app.add_option("--threads", threads, "TBB worker threads (0: TBB's default)");
     CLI11_PARSE(app, argc, argv);
     try {
@@ -327,7 +353,11 @@ int main(int argc, char** argv) {
                 if (std::find(meshes.begin(), meshes.end(), name) == meshes.end())
                     meshes.push_back(name);
         const std::map<std::string, double> published = readPublished(publishedPath);
-        std::ofstream summaryCsv, viewCsv;
+        std::ofstream summaryCsv, viewCsv, cuspCsv;
+        if (!cuspsPath.empty()) {
+            cuspCsv.open(cuspsPath);
+            cuspCsv << "mesh,view,source,x,y\n" << std::flush;
+        }
         if (!outPath.empty()) {
             summaryCsv.open(outPath);
             summaryCsv << kSummaryHeader << std::flush;
@@ -364,6 +394,8 @@ int main(int argc, char** argv) {
                                               parameters, truth, half));
                     if (viewCsv)
                         viewCsv << viewRow(name, v, m.views.back()) << std::flush;
+                    if (cuspCsv)
+                        cuspCsv << cuspRows(name, v, m.views.back()) << std::flush;
                 }
                 if (const auto row = matchPublished(published, name))
                     m.published = published.at(*row);

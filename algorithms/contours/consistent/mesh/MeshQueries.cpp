@@ -1,15 +1,21 @@
 #include "contours/consistent/mesh/MeshQueries.h"
 
+#include "surface/SurfaceTessellation.h"
+
 #include <algorithm>
 #include <string>
 
 namespace contour::consistent {
 
 double sceneScale(const ConsistentMesh& m) {
-    BoundingBox box;
-    for (Index v = 0; v < m.vertexCount(); ++v)
-        box.extend(m.vertex(v).position);
-    const double d = box.diagonal();
+    // The initial mesh's box (§6.1: the level-1 tessellation at the limit),
+    // not the working mesh's: the tolerances a phase searches to and the
+    // checks after later phases must be the same numbers, and a wiggle that
+    // moves an extreme vertex changes the working mesh's box (monsterfrog
+    // view 23: a radial root found at 7.846e-9 failed a later check at
+    // 7.843e-9).
+    const std::shared_ptr<const SurfaceTessellation> t = sharedTessellation(m.surfacePtr(), 1);
+    const double d = t->mesh->boundingBox().diagonal();
     return d > 0.0 ? d : 1.0;
 }
 

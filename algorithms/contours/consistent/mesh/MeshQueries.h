@@ -10,7 +10,8 @@
 
 namespace contour::consistent {
 
-// Bounding-box diagonal of the vertices (tolerances are relative to it).
+// Bounding-box diagonal of the initial mesh (the surface's level-1
+// tessellation): tolerances are relative to it, the same in every phase.
 double sceneScale(const ConsistentMesh& m);
 
 // The faces around the given vertices, each once, sorted.

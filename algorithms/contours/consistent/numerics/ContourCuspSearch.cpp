@@ -19,8 +19,11 @@ std::optional<ContourPoint> contourPointOnFan(const ConsistentMesh& m, Index o, 
     const double flo = vo.g, fhi = orientation(m.surface().evaluate(*q), m.camera());
     // g must change sign once on O-S(s); otherwise A-B itself crosses g = 0
     // (a sign change the initialization's 10 samples missed).
-    if (!(flo * fhi < 0.0))
+    if (!(flo * fhi < 0.0)) {
+        if (flo * fhi > 0.0)
+            stats.gaps.push_back({s, std::abs(fhi)});
         return std::nullopt;
+    }
     // Regula falsi, Illinois variant, falling back to bisection; the answer
     // is the sample of least |g|.
     struct Probe {

@@ -42,8 +42,16 @@ struct ContourCuspStats {
     long long evaluations = 0;      // surface evaluations
     long long undefinedSamples = 0; // no chart, g of one sign on O-S(s), or κr NaN / 0
     long long unconvergedRoots = 0; // roots of g left above gTolerance
-    long long brokenArcs = 0;       // sign changes across a gap in the contour arc, dropped
+    long long brokenArcs = 0;       // sign changes across a gap in the contour arc
     long long jumps = 0;            // sign changes where κr jumps over 0 (kept)
+    // The points S(s) of A-B found on O's side of g = 0: A-B crosses g = 0
+    // twice around each (the contour leaves the face through A-B and comes
+    // back), with |g(S(s))|.
+    struct Gap {
+        double s = 0.0;
+        double depth = 0.0;
+    };
+    std::vector<Gap> gaps;
 };
 
 struct ContourPoint {

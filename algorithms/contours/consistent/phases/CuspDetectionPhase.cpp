@@ -107,10 +107,19 @@ bool insertionRootConverges(const ConsistentMesh& m, Index o, Index a, Index b, 
                .outcome == BisectionOutcome::Converged;
 }
 
+// A face's edge A-B (opposite its odd corner O) that crosses g = 0 twice:
+// the contour leaves the face through A-B and comes back, so no label sees
+// that piece of it (nor a cusp on it). S(s) lies on O's side.
+struct DoubleCrossing {
+    Triangle corners; // the face when it was searched
+    Index o = kInvalidIndex, a = kInvalidIndex, b = kInvalidIndex;
+    double s = 0.0;
+};
+
 struct Counts {
     long long found = 0, splits = 0, shifts = 0, onEdge = 0, evaluations = 0, budget = 0,
               undefined = 0, noChart = 0, interpolationFailed = 0, undefinedSamples = 0,
-              brokenArcs = 0, jumps = 0, moved = 0;
+              brokenArcs = 0, jumps = 0, moved = 0, doubleCrossingSplits = 0;
     bool contourSearch = false;
     std::map<std::string, long long> skipped;
 };
@@ -120,7 +129,8 @@ struct Counts {
 // coordinates put it on the line from the odd corner O to S(s) on A-B, so
 // placeCusp splits A-B at s, the same S.
 void searchAlongContour(const ConsistentMesh& m, const Triangle& t,
-                        const ContourCuspOptions& options, std::vector<Candidate>& out, Counts& n) {
+                        const ContourCuspOptions& options, std::vector<Candidate>& out,
+                        std::vector<DoubleCrossing>& doubleCrossings, Counts& n) {
     int odd = -1;
     for (int i = 0; i < 3; ++i) {
         const VertexLabel l = m.vertex(t[i]).label;
@@ -140,6 +150,16 @@ void searchAlongContour(const ConsistentMesh& m, const Triangle& t,
         b[ib] = static_cast<long double>(c.t) * c.s;
         out.push_back({t, b, c.position});
     }
+    if (!stats.gaps.empty()) {
+        // The deepest point on O's side, as §6.1's sign-crossing split would
+        // take it (a split next to g = 0 would leave the crossing as thin).
+        const auto deepest =
+            std::max_element(stats.gaps.begin(), stats.gaps.end(),
+                             [](const ContourCuspStats::Gap& x, const ContourCuspStats::Gap& y) {
+                                 return x.depth < y.depth;
+                             });
+        doubleCrossings.push_back({t, t[odd], t[ia], t[ib], deepest->s});
+    }
     n.evaluations += stats.evaluations;
     n.undefinedSamples += stats.undefinedSamples;
     n.brokenArcs += stats.brokenArcs;
@@ -151,7 +171,8 @@ void searchAlongContour(const ConsistentMesh& m, const Triangle& t,
 std::vector<Candidate> searchFaces(const ConsistentMesh& m, const PhaseContext& ctx,
                                    const JointRootOptions& options, int subdivision,
                                    const ContourCuspOptions& contour, bool onlyChangedFaces,
-                                   int phase, Counts& n) {
+                                   int phase, std::vector<DoubleCrossing>& doubleCrossings,
+                                   Counts& n) {
     std::vector<Candidate> out;
     const int k = 1 << subdivision; // lattice steps per face side
     for (Index f = 0; f < m.faceCount(); ++f) {
@@ -161,7 +182,7 @@ std::vector<Candidate> searchFaces(const ConsistentMesh& m, const PhaseContext& 
             continue;
         const Triangle t = m.face(f);
         if (contour.samples > 0) {
-            searchAlongContour(m, t, contour, out, n);
+            searchAlongContour(m, t, contour, out, doubleCrossings, n);
             continue;
         }
         std::array<std::array<double, 2>, 3> values;
@@ -370,6 +391,25 @@ void placeCusp(ConsistentMesh& m, const Candidate& c, double shiftFraction,
     ++n.splits;
 }
 
+// §6.1's sign-crossing split, for an edge whose double crossing of g = 0
+// the initialization's samples missed: A-B is split at S(s), on O's side, so
+// that A-S and S-B each cross g = 0 once and contour insertion sees the
+// piece of contour beyond A-B. The new faces are searched again for cusps.
+bool splitDoubleCrossing(ConsistentMesh& m, const DoubleCrossing& d, int phase) {
+    if (intactFace(m, d.corners) == kInvalidIndex)
+        return false;
+    const std::optional<Preimage> p =
+        m.interpolate(m.vertex(d.a).preimage, m.vertex(d.b).preimage, d.s);
+    if (!p || !splitKeepsCharts(m, d.a, d.b, *p))
+        return false;
+    MeshVertex v = m.evaluate(*p);
+    if (v.label != m.vertex(d.o).label)
+        return false;
+    v.provenance = Provenance::Inserted;
+    m.splitEdge(d.a, d.b, v, phase);
+    return true;
+}
+
 // Two cusps so close that their cusp edges share a face (the second cusp
 // was found in a face the first one split): inserting both would give the
 // first cusp vertex a fifth neighbour, the second one (§6.2 f wants valence
@@ -446,8 +486,9 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
     std::vector<Vec3> handled;
     long long deferred = 0;
     for (int round = 0; round < kMaxRounds; ++round) {
-        const std::vector<Candidate> candidates =
-            searchFaces(m, ctx, options, subdivision, contour, round > 0, phase, n);
+        std::vector<DoubleCrossing> doubleCrossings;
+        const std::vector<Candidate> candidates = searchFaces(m, ctx, options, subdivision, contour,
+                                                              round > 0, phase, doubleCrossings, n);
         deferred = 0;
         for (const Candidate& c : candidates) {
             bool known = false;
@@ -465,7 +506,13 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
             ++n.found;
             placeCusp(m, c, shiftFraction, contour, phase, n);
         }
-        if (deferred == 0)
+        // After the cusps found in intact faces: a face split by a cusp is
+        // searched again in the next round anyway.
+        long long split = 0;
+        for (const DoubleCrossing& d : doubleCrossings)
+            split += splitDoubleCrossing(m, d, phase);
+        n.doubleCrossingSplits += split;
+        if (deferred == 0 && split == 0)
             break;
     }
     const long long separations = separateCuspEdges(m, phase);
@@ -507,15 +554,21 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
     if (n.contourSearch) {
         s.setCounter(counters::kCuspSignChangesAcrossAGap, static_cast<double>(n.brokenArcs));
         s.setCounter(counters::kCuspSignChangesByAJump, static_cast<double>(n.jumps));
+        s.setCounter(counters::kCuspDoubleCrossingSplits,
+                     static_cast<double>(n.doubleCrossingSplits));
     }
     // The contour search's notes (ContourCuspSearch.h), when their count is > 0.
     const auto note = [&s](long long count, const char* what) {
         if (count > 0)
             s.notes.push_back(std::to_string(count) + what);
     };
+    note(n.doubleCrossingSplits,
+         " edges opposite a face's odd corner cross g = 0 twice (the contour leaves the face "
+         "through them and comes back; the initialization's samples missed it): split there as "
+         "§6.1 splits sign crossings, and the new faces searched again for cusps");
     note(n.brokenArcs, " sign changes of the radial curvature across a gap in the contour's "
                        "crossing of a face (the contour leaves through the edge opposite the odd "
-                       "corner, which crosses g = 0 twice) were not taken as cusps");
+                       "corner, which crosses g = 0 twice)");
     note(n.jumps, " sign changes of the radial curvature were jumps over 0, not roots (second "
                   "derivatives not continuous across the evaluator's patch boundaries near "
                   "extraordinary vertices); they are cusps all the same");

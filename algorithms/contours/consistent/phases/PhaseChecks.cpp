@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <tbb/parallel_for.h>
@@ -192,9 +193,12 @@ InvariantCheck radialEdgeCheck(const PhaseContext& ctx, const ConsistentMesh& m)
         }
         const Index p = aC ? a : b, r = aC ? b : a;
         const double d = radialPlaneDistance(m.camera(), m.vertex(p), m.vertex(r).position);
-        if (!(std::abs(d) <= tol))
-            violate(c, "edge " + std::to_string(p) + "-" + std::to_string(r) + ": distance " +
-                           std::to_string(d) + " to p's radial plane");
+        if (!(std::abs(d) <= tol)) {
+            char what[96];
+            std::snprintf(what, sizeof what, ": distance %.3g to p's radial plane (tolerance %.3g)",
+                          d, tol);
+            violate(c, "edge " + std::to_string(p) + "-" + std::to_string(r) + what);
+        }
     }
     return c;
 }
