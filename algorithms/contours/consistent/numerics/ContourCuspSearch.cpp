@@ -19,11 +19,8 @@ std::optional<ContourPoint> contourPointOnFan(const ConsistentMesh& m, Index o, 
     const double flo = vo.g, fhi = orientation(m.surface().evaluate(*q), m.camera());
     // g must change sign once on O-S(s); otherwise A-B itself crosses g = 0
     // (a sign change the initialization's 10 samples missed).
-    if (!(flo * fhi < 0.0)) {
-        if (flo * fhi > 0.0)
-            stats.gaps.push_back({s, std::abs(fhi)});
+    if (!(flo * fhi < 0.0))
         return std::nullopt;
-    }
     // Regula falsi, Illinois variant, falling back to bisection; the answer
     // is the sample of least |g|.
     struct Probe {
@@ -184,9 +181,11 @@ std::vector<ContourPoint> contourCuspsInFace(const ConsistentMesh& m, Index o, I
             const double scale = std::max(previous->f, x.f);
             stats.jumps += std::min(std::abs(lo.radialCurvature), std::abs(hi.radialCurvature)) >
                            options.jumpRatio * scale;
-            if (broken)
+            if (broken) {
                 ++stats.brokenArcs;
-            else
+                // Midpoint steps: the failed sample was the final bracket's middle.
+                stats.brokenArcGaps.push_back(0.5 * (r.bracket.lo + r.bracket.hi));
+            } else
                 out.push_back(std::abs(lo.radialCurvature) <= std::abs(hi.radialCurvature) ? lo
                                                                                            : hi);
         }

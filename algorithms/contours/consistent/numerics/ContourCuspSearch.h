@@ -44,14 +44,11 @@ struct ContourCuspStats {
     long long unconvergedRoots = 0; // roots of g left above gTolerance
     long long brokenArcs = 0;       // sign changes across a gap in the contour arc
     long long jumps = 0;            // sign changes where κr jumps over 0 (kept)
-    // The points S(s) of A-B found on O's side of g = 0: A-B crosses g = 0
-    // twice around each (the contour leaves the face through A-B and comes
-    // back), with |g(S(s))|.
-    struct Gap {
-        double s = 0.0;
-        double depth = 0.0;
-    };
-    std::vector<Gap> gaps;
+    // Per broken arc, the s where the bisection found no contour point: S(s)
+    // on O's side of g = 0 means A-B crosses g = 0 twice around it (the
+    // contour leaves the face through A-B and comes back), and κr changes
+    // sign on the piece outside the face.
+    std::vector<double> brokenArcGaps;
 };
 
 struct ContourPoint {

@@ -150,16 +150,11 @@ void searchAlongContour(const ConsistentMesh& m, const Triangle& t,
         b[ib] = static_cast<long double>(c.t) * c.s;
         out.push_back({t, b, c.position});
     }
-    if (!stats.gaps.empty()) {
-        // The deepest point on O's side, as §6.1's sign-crossing split would
-        // take it (a split next to g = 0 would leave the crossing as thin).
-        const auto deepest =
-            std::max_element(stats.gaps.begin(), stats.gaps.end(),
-                             [](const ContourCuspStats::Gap& x, const ContourCuspStats::Gap& y) {
-                                 return x.depth < y.depth;
-                             });
-        doubleCrossings.push_back({t, t[odd], t[ia], t[ib], deepest->s});
-    }
+    // A sign change of κr across a gap: the cusp lies on the piece of
+    // contour beyond A-B. One split per face (the next round searches the
+    // new faces again).
+    if (!stats.brokenArcGaps.empty())
+        doubleCrossings.push_back({t, t[odd], t[ia], t[ib], stats.brokenArcGaps.front()});
     n.evaluations += stats.evaluations;
     n.undefinedSamples += stats.undefinedSamples;
     n.brokenArcs += stats.brokenArcs;
