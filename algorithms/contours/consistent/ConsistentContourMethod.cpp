@@ -122,6 +122,7 @@ Method makeConsistentContourMethod() {
              {"cusp-area-threshold", 1e-20},
              {"cusp-search-subdivision", 0},
              {"cusp-contour-samples", 0},
+             {"cusp-double-crossing-split", false},
              {"cusp-refinement", false},
              // §6.2 e: snap within 20 % of the edge length.
              {"snap-fraction", 0.2},

@@ -447,6 +447,7 @@ struct CuspDetectionOptions {
     double shiftFraction = 0.0; // cusp-shift-fraction
     int subdivision = 0;        // cusp-search-subdivision
     int contourSamples = 0;     // cusp-contour-samples
+    bool splitDoubleCrossings = true; // cusp-double-crossing-split
     // Contour insertion's root search, which the cusp's edge must pass.
     ContourRootOptions roots;
     static CuspDetectionOptions read(const ParameterSet& p) {
@@ -455,6 +456,7 @@ struct CuspDetectionOptions {
         o.shiftFraction = p.getDouble("cusp-shift-fraction");
         o.subdivision = p.getInt("cusp-search-subdivision");
         o.contourSamples = p.getInt("cusp-contour-samples");
+        o.splitDoubleCrossings = p.getBool("cusp-double-crossing-split");
         o.roots = ContourRootOptions::read(p);
         return o;
     }
@@ -504,8 +506,9 @@ void runCuspDetection(const PhaseContext& ctx, Snapshot& s) {
         // After the cusps found in intact faces: a face split by a cusp is
         // searched again in the next round anyway.
         long long split = 0;
-        for (const DoubleCrossing& d : doubleCrossings)
-            split += splitDoubleCrossing(m, d, phase);
+        if (parameters.splitDoubleCrossings)
+            for (const DoubleCrossing& d : doubleCrossings)
+                split += splitDoubleCrossing(m, d, phase);
         n.doubleCrossingSplits += split;
         if (deferred == 0 && split == 0)
             break;
@@ -632,6 +635,17 @@ void addCuspDetectionPhase(Method& m) {
          32,
          0,
          256,
+         {}});
+    m.parameters.push_back(
+        {"cusp-double-crossing-split",
+         "Split double crossings at cusps",
+         "Not in the paper. With cusp-contour-samples: where κr changes sign across a gap "
+         "(the edge opposite the odd corner crosses g = 0 twice), split that edge as §6.1 "
+         "does and search the new faces, so the cusp beyond it is found.",
+         ParameterType::Bool,
+         true,
+         0,
+         0,
          {}});
     m.addPhase(
         {"cusp-detection",
