@@ -1,7 +1,6 @@
 // The dense oracle of the Powell-Sabin spline's contour (SplineGroundTruth.h).
 #include "SplineGroundTruth.h"
 
-#include "contours/Methods.h"
 #include "contours/powell_sabin/PowellSabinState.h"
 #include "pipeline/ViewGraph.h"
 
@@ -176,17 +175,6 @@ int components(int items, const std::vector<std::pair<int, int>>& joins) {
         }
     }
     return count;
-}
-
-OracleRules methodRules() {
-    OracleRules rules;
-    const Method* method = findMethod("powell-sabin");
-    if (!method)
-        return rules;
-    const ParameterSet defaults = ParameterSet::defaults(method->parameters);
-    if (defaults.has("zig-zag-pixels"))
-        rules.zigZagPixels = defaults.getDouble("zig-zag-pixels");
-    return rules;
 }
 
 namespace {

@@ -103,9 +103,6 @@ struct OracleRules {
     double zigZagPixels = 0.0;
     int coneRingSteps = 8;
 };
-// The powell-sabin method's default zig-zag-pixels, or 0 when it has no
-// such parameter.
-OracleRules methodRules();
 
 // Components, cusps and crossings of `truth` on `surface`, seen by `camera`
 // (transformedCamera). Crossings are counted with the loops cut where they
@@ -168,6 +165,6 @@ struct OracleTally {
 // `last` is a powell-sabin snapshot with the spline and a view graph (the
 // visibility phase) of `view`. Throws std::invalid_argument otherwise.
 SplineViewComparison compareWithOracle(const Snapshot& last, const Camera& view, int samples,
-                                       const OracleRules& rules = methodRules());
+                                       const OracleRules& rules = {});
 
 } // namespace contour::testing

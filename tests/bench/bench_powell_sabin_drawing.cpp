@@ -183,8 +183,6 @@ int main(int argc, char** argv) {
             names.push_back(name);
     }
     std::printf("load average: %s\n", bench::loadAverage().c_str());
-    std::printf("zig-zag rule: %g px (the method's zig-zag-pixels; 0: exact graph)\n",
-                testing::methodRules().zigZagPixels);
     if (samples > 0)
         std::printf("oracle: N = %d and %d lattice steps per layout face\n", samples, samples / 2);
     else
