@@ -4,8 +4,8 @@
 //   bench_visibility [--meshes-dir DIR] [--mesh NAME] [--views N]
 //                    [--mesh-surface S] [--mesh-level L]... [--no-mesh]
 //                    [--repeat N] [--save-inputs DIR | --load-inputs DIR]
-//                    [--depth-views N] [--no-depth] [--out figures.csv]
-//                    [--threads N]
+//                    [--depth-views N] [--no-depth] [--depth-mesh NAME]...
+//                    [--no-timing] [--out figures.csv] [--threads N]
 //
 // Part 1, timing: the consistent method and the mesh method run to the end
 // on one model of ../shared/meshes (default controlmesh: its consistent
@@ -474,6 +474,8 @@ int main(int argc, char** argv) {
     int depthViews = 26;
     bool noDepth = false;
     bool noMesh = false;
+    bool noTiming = false;
+    std::vector<std::string> depthMeshes;
     int repeat = 1;
     std::string saveDir, loadDir;
     int threads = 0;
@@ -511,6 +513,10 @@ int main(int argc, char** argv) {
                    "in DIR instead of running the method")
         ->excludes(save);
     app.add_flag("--no-depth", noDepth, "Skip part 2 (the depth-buffer agreement)");
+    app.add_option("--depth-mesh", depthMeshes,
+                   "Part 2: also compare the consistent method on this mesh of --meshes-dir "
+                   "(file name without extension), repeatable");
+    app.add_flag("--no-timing", noTiming, "Skip part 1 (the timing)");
     app.add_option("--out", outPath, "Write every figure to this CSV file");
     app.add_option("--threads", threads, "TBB worker threads (0: TBB's default)")
         ->check(CLI::Range(0, 1024))
@@ -547,7 +553,7 @@ int main(int argc, char** argv) {
 
         // Part 1.
         std::vector<TimingRow> timing;
-        if (const auto file = findMeshFile(meshesDir, meshName)) {
+        if (const auto file = noTiming ? std::nullopt : findMeshFile(meshesDir, meshName)) {
             const auto cage = std::make_shared<const PolygonMesh>(readMesh(file->string()));
             std::printf("\n=== part 1: %s, %d cage faces, %d views ===\n", meshName.c_str(),
                         static_cast<int>(cage->faceCount()), views);
@@ -571,6 +577,8 @@ int main(int argc, char** argv) {
                                              {"tessellation-level", ParameterValue(level)}},
                                             meshName, cage, meshOptions));
             }
+        } else if (noTiming) {
+            std::printf("\nskipping part 1 (--no-timing)\n");
         } else {
             std::printf("\nskipping part 1: no %s/%s.{obj,off,ply}\n", meshesDir.c_str(),
                         meshName.c_str());
@@ -642,6 +650,18 @@ int main(int argc, char** argv) {
                                 m->name.c_str(), rows.back().views, rows.back().checkSeconds);
                     std::fflush(stdout);
                 }
+            }
+            for (const std::string& name : depthMeshes) {
+                const auto file = findMeshFile(meshesDir, name);
+                if (!file) {
+                    std::printf("\nskipping %s: not in %s\n", name.c_str(), meshesDir.c_str());
+                    continue;
+                }
+                const auto cage = std::make_shared<const PolygonMesh>(readMesh(file->string()));
+                rows.push_back(agreement(*consistent, name, cage, depthViews));
+                std::printf("  %s, consistent: %d views compared (%.1f s of checks)\n",
+                            name.c_str(), rows.back().views, rows.back().checkSeconds);
+                std::fflush(stdout);
             }
             std::printf("\n=== part 2: depth-buffer agreement, %d views, 2x viewport ===\n"
                         "%-18s %-13s %10s %10s %9s %9s %9s %9s %9s %9s %11s\n",
