@@ -414,6 +414,11 @@ struct AgreementRow {
     double worstVisible = 1.0;
     int worstView = -1;
     double checkSeconds = 0.0;
+    // Conflicts where propagation and the chain's ray disagree about
+    // visibility itself (one QI 0, the other not), judged by the buffer on
+    // that chain: which of the two it sides with, or neither (no length
+    // compared).
+    int visibilityConflicts = 0, buffersWithPropagation = 0, buffersWithRay = 0;
 };
 
 double excludedShare(const DepthLengths& l) {
@@ -439,6 +444,19 @@ AgreementRow agreement(const Method& method, const std::string& meshName,
         if (a.all.visibleAgreement() < row.worstVisible) {
             row.worstVisible = a.all.visibleAgreement();
             row.worstView = v;
+        }
+        for (const VisibilityConflict& c : s.viewGraph->conflicts) {
+            if ((c.propagatedQi == 0) == (c.rayQi == 0) || c.chain == kInvalidIndex ||
+                static_cast<size_t>(c.chain) >= a.byChain.size())
+                continue;
+            ++row.visibilityConflicts;
+            const DepthLengths& l = a.byChain[static_cast<size_t>(c.chain)];
+            const double seen = l.visibleAgree + l.hiddenButVisible;
+            const double occluded = l.visibleButOccluded + l.hiddenAgree;
+            if (seen == occluded)
+                continue;
+            ((seen > occluded) == (c.propagatedQi == 0) ? row.buffersWithPropagation
+                                                        : row.buffersWithRay)++;
         }
         row.total += a;
         ++row.views;
@@ -701,6 +719,16 @@ int main(int argc, char** argv) {
                                    num(100.0 * excludedShare(l), 2),
                                    num(100.0 * r.worstVisible, 3)});
             }
+            std::printf("\nconflicts where propagation and the chain's ray disagree about "
+                        "visibility (QI 0 or not), judged by the buffer on the chain:\n"
+                        "%-18s %-13s %10s %17s %10s %10s\n",
+                        "mesh", "method", "conflicts", "with propagation", "with ray", "neither");
+            for (const AgreementRow& r : rows)
+                if (r.visibilityConflicts > 0)
+                    std::printf(
+                        "%-18s %-13s %10d %17d %10d %10d\n", r.mesh.c_str(), r.method.c_str(),
+                        r.visibilityConflicts, r.buffersWithPropagation, r.buffersWithRay,
+                        r.visibilityConflicts - r.buffersWithPropagation - r.buffersWithRay);
         }
         std::printf("\ndone; load average %s\n", loadAverage().c_str());
     } catch (const std::exception& e) {
