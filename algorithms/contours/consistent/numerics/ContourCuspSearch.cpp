@@ -181,11 +181,9 @@ std::vector<ContourPoint> contourCuspsInFace(const ConsistentMesh& m, Index o, I
             const double scale = std::max(previous->f, x.f);
             stats.jumps += std::min(std::abs(lo.radialCurvature), std::abs(hi.radialCurvature)) >
                            options.jumpRatio * scale;
-            if (broken) {
-                ++stats.brokenArcs;
-                // Midpoint steps: the failed sample was the final bracket's middle.
+            if (broken) // midpoint steps: the failed sample was the final bracket's middle
                 stats.brokenArcGaps.push_back(0.5 * (r.bracket.lo + r.bracket.hi));
-            } else
+            else
                 out.push_back(std::abs(lo.radialCurvature) <= std::abs(hi.radialCurvature) ? lo
                                                                                            : hi);
         }

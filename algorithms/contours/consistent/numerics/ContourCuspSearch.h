@@ -42,9 +42,8 @@ struct ContourCuspStats {
     long long evaluations = 0;      // surface evaluations
     long long undefinedSamples = 0; // no chart, g of one sign on O-S(s), or κr NaN / 0
     long long unconvergedRoots = 0; // roots of g left above gTolerance
-    long long brokenArcs = 0;       // sign changes across a gap in the contour arc
     long long jumps = 0;            // sign changes where κr jumps over 0 (kept)
-    // Per broken arc, the s where the bisection found no contour point: S(s)
+    // Per sign change across a gap in the contour arc (a broken arc), the s where the bisection found no contour point: S(s)
     // on O's side of g = 0 means A-B crosses g = 0 twice around it (the
     // contour leaves the face through A-B and comes back), and κr changes
     // sign on the piece outside the face.

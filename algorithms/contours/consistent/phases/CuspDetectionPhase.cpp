@@ -112,7 +112,7 @@ bool insertionRootConverges(const ConsistentMesh& m, Index o, Index a, Index b, 
 // that piece of it (nor a cusp on it). S(s) lies on O's side.
 struct DoubleCrossing {
     Triangle corners; // the face when it was searched
-    Index o = kInvalidIndex, a = kInvalidIndex, b = kInvalidIndex;
+    int odd = -1;     // O's position in corners; A and B follow it
     double s = 0.0;
 };
 
@@ -154,10 +154,10 @@ void searchAlongContour(const ConsistentMesh& m, const Triangle& t,
     // contour beyond A-B. One split per face (the next round searches the
     // new faces again).
     if (!stats.brokenArcGaps.empty())
-        doubleCrossings.push_back({t, t[odd], t[ia], t[ib], stats.brokenArcGaps.front()});
+        doubleCrossings.push_back({t, odd, stats.brokenArcGaps.front()});
     n.evaluations += stats.evaluations;
     n.undefinedSamples += stats.undefinedSamples;
-    n.brokenArcs += stats.brokenArcs;
+    n.brokenArcs += static_cast<long long>(stats.brokenArcGaps.size());
     n.jumps += stats.jumps;
 }
 
@@ -393,15 +393,16 @@ void placeCusp(ConsistentMesh& m, const Candidate& c, double shiftFraction,
 bool splitDoubleCrossing(ConsistentMesh& m, const DoubleCrossing& d, int phase) {
     if (intactFace(m, d.corners) == kInvalidIndex)
         return false;
-    const std::optional<Preimage> p =
-        m.interpolate(m.vertex(d.a).preimage, m.vertex(d.b).preimage, d.s);
-    if (!p || !splitKeepsCharts(m, d.a, d.b, *p))
+    const Index o = d.corners[d.odd], a = d.corners[(d.odd + 1) % 3],
+                b = d.corners[(d.odd + 2) % 3];
+    const std::optional<Preimage> p = m.interpolate(m.vertex(a).preimage, m.vertex(b).preimage, d.s);
+    if (!p || !splitKeepsCharts(m, a, b, *p))
         return false;
     MeshVertex v = m.evaluate(*p);
-    if (v.label != m.vertex(d.o).label)
+    if (v.label != m.vertex(o).label)
         return false;
     v.provenance = Provenance::Inserted;
-    m.splitEdge(d.a, d.b, v, phase);
+    m.splitEdge(a, b, v, phase);
     return true;
 }
 
