@@ -432,6 +432,7 @@ void ImageView2D::rebuildViewGraph() {
         ++drawn_.nodes;
         ++drawn_.nodesByType[static_cast<size_t>(graph_->nodes[n].type)];
         drawn_.cuspFolds += graph_->nodes[n].smoothCusp;
+        drawn_.singularCuspFolds += graph_->nodes[n].singularCusp;
         drawn_.smallLoopCrossings += graph_->nodes[n].smallLoop;
     }
 }
@@ -515,6 +516,15 @@ std::vector<ImageView2D::LegendEntry> ImageView2D::legendEntries() const {
                         .arg(tr(style.label))
                         .arg(drawn_.cuspFolds)
                         .arg(count - drawn_.cuspFolds);
+        // Cusps at singular points of the surface are stepped by the mesh's
+        // one-ring test: the smooth fold does not exist there.
+        if (static_cast<ViewNodeType>(t) == ViewNodeType::CurtainFold &&
+            drawn_.singularCuspFolds > 0)
+            label = QStringLiteral("%1 (%2 at cusps, %3 at singular points, %4 by a mesh test)")
+                        .arg(tr(style.label))
+                        .arg(drawn_.cuspFolds)
+                        .arg(drawn_.singularCuspFolds)
+                        .arg(count - drawn_.cuspFolds - drawn_.singularCuspFolds);
         // T-junctions of sub-pixel loops of the polylines (zig-zags next to
         // cusps), counted apart from the crossings of the smooth contour.
         if (static_cast<ViewNodeType>(t) == ViewNodeType::ImageIntersection &&

@@ -148,6 +148,8 @@ private:
         int visible = 0, hidden = 0, simplified = 0, nodes = 0;
         std::array<int, kViewNodeTypeCount> nodesByType{};
         int cuspFolds = 0; // curtain folds at the smooth surface's cusps (ViewNode::smoothCusp)
+        int singularCuspFolds =
+            0; // ... at cusp vertices on singular points (ViewNode::singularCusp)
         int smallLoopCrossings = 0; // T-junctions of sub-pixel loops (ViewNode::smallLoop)
     };
     struct LegendEntry {

@@ -172,8 +172,13 @@ void vertexRows(const Snapshot& s, Index v, const std::vector<std::string>& phas
         rows.push_back({QStringLiteral("provenance"), provenanceName((*provenance)[v])});
     if (const auto* phase = fieldValues<int>(s, fields::kVertexChangedByPhase, L::Vertex, nv))
         rows.push_back({QStringLiteral("phase"), phaseName((*phase)[v], phases)});
-    if (const auto* cusp = fieldValues<int>(s, fields::kCusp, L::Vertex, nv))
-        rows.push_back({QStringLiteral("cusp"), yesNo((*cusp)[v] != 0)});
+    if (const auto* cusp = fieldValues<int>(s, fields::kCusp, L::Vertex, nv)) {
+        const auto* singular = fieldValues<int>(s, fields::kSingularCusp, L::Vertex, nv);
+        rows.push_back(
+            {QStringLiteral("cusp"), singular && (*singular)[v] != 0
+                                         ? QStringLiteral("yes, at a singular point of the surface")
+                                         : yesNo((*cusp)[v] != 0)});
+    }
     if (const auto* offset = fieldValues<double>(s, fields::kNormalOffset, L::Vertex, nv))
         rows.push_back({QStringLiteral("normal offset"), number((*offset)[v])});
     std::vector<Index> faces;

@@ -159,6 +159,7 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
                          {"qi_step", node.qiStep},
                          {"unreliable", node.unreliable},
                          {"smooth_cusp", node.smoothCusp},
+                         {"singular_cusp", node.singularCusp},
                          {"small_loop", node.smallLoop},
                          {"local_occluders", node.localOccluders}});
     }

@@ -347,6 +347,8 @@ inline constexpr CounterName kMixedConvexityChains{"mixed-convexity-chains",
 // Consistent contours, curtain folds from the surface's cusps.
 inline constexpr CounterName kCurtainFoldsAtCusps{"curtain-folds-at-cusps",
                                                   "curtain folds at cusps"};
+inline constexpr CounterName kCurtainFoldsAtSingularPoints{"curtain-folds-at-singular-points",
+                                                           "curtain folds at singular points"};
 inline constexpr CounterName kCuspFoldsSidedByCurvature{"cusp-folds-sided-by-curvature",
                                                         "cusp folds sided by curvature"};
 inline constexpr CounterName kCurtainFoldsByTheNearFaceFallback{

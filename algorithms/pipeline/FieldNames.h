@@ -49,6 +49,10 @@ inline constexpr const char* kLabel = "label";
 inline constexpr const char* kProvenance = "provenance";
 // Vertex, int: 1 at a cusp vertex (g = 0 and radial curvature 0, §6.2 d).
 inline constexpr const char* kCusp = "cusp";
+// Vertex, int: 1 at a cusp vertex where the surface is singular (a principal
+// curvature radius below 1e-6 of the scene, or no normal): no cusp of a
+// smooth surface, so its curtain fold is stepped by the one-ring test.
+inline constexpr const char* kSingularCusp = "singular_cusp";
 // Vertex, double: offset along n(u) of the final normal wiggle (§6.4);
 // position = f(u) + offset * n(u).
 inline constexpr const char* kNormalOffset = "normal_offset";

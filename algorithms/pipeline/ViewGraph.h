@@ -145,6 +145,10 @@ struct ViewNode {
     // the surface's radial curvature; false for curtain folds found by a
     // mesh test (convexity, near face, one-ring).
     bool smoothCusp = false;
+    // A curtain fold at a cusp vertex where the surface is singular
+    // (fields::kSingularCusp): decided by the one-ring test like a mesh
+    // fold, its step possibly 0; smoothCusp is false.
+    bool singularCusp = false;
     // A T-junction bounding a loop of the polylines smaller than
     // t-junction-min-loop (a bigon of two branches or a branch around a
     // cusp, core/SmallLoopCrossings.h): a zig-zag of the sampled contour, not

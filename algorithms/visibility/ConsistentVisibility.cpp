@@ -372,7 +372,7 @@ std::vector<std::uint8_t> cleanComponents(const ViewGraph& g, const TriangleMesh
     std::vector<std::uint8_t> clean(static_cast<size_t>(count), 1);
     auto fallbackFold = [&](Index node) {
         return node != kInvalidIndex && g.nodes[node].type == ViewNodeType::CurtainFold &&
-               !g.nodes[node].smoothCusp;
+               !g.nodes[node].smoothCusp && !g.nodes[node].singularCusp;
     };
     for (const ViewChain& c : g.chains) {
         if (c.component == kInvalidIndex)

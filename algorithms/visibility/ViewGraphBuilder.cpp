@@ -64,9 +64,9 @@ public:
         : mesh_(*input.mesh), curves_(*input.curves), secondFaces_(input.secondFaces),
           orientation_(*input.faceOrientation),
           facing_(input.facing ? input.facing : input.faceOrientation),
-          cuspVertex_(input.cuspVertex), radialCurvature_(input.radialCurvature),
-          faceInconsistent_(input.faceInconsistent), camera_(camera), options_(options),
-          stats_(stats), cuts_(curves_.size()) {
+          cuspVertex_(input.cuspVertex), singularCusp_(input.singularCusp),
+          radialCurvature_(input.radialCurvature), faceInconsistent_(input.faceInconsistent),
+          camera_(camera), options_(options), stats_(stats), cuts_(curves_.size()) {
         if (options_.foldTest == CurtainFoldTest::SmoothCusps &&
             (!cuspVertex_ || !radialCurvature_ || !faceInconsistent_))
             throw std::invalid_argument(
@@ -93,6 +93,7 @@ private:
     const std::vector<int>& orientation_;
     const std::vector<int>* facing_;
     const std::vector<std::uint8_t>* cuspVertex_;
+    const std::vector<std::uint8_t>* singularCusp_;
     const std::vector<double>* radialCurvature_;
     const std::vector<std::uint8_t>* faceInconsistent_;
     const Camera& camera_;
@@ -254,6 +255,7 @@ private:
             bool unreliable = false;
             bool localOnly = false;
             bool smoothCusp = false; // SmoothCusps: a cusp vertex
+            bool singularCusp = false; // SmoothCusps: a cusp vertex at a singular point
             bool fallback = false;   // SmoothCusps: the near-face test next to inconsistency
             bool zigZag = false;     // SmoothCusps: a mesh-only fold, not made a node
         };
@@ -295,7 +297,13 @@ private:
                 const bool meshFold = e0.concave != e1.concave || o0 != o1;
                 if (options_.foldTest == CurtainFoldTest::SmoothCusps &&
                     (*cuspVertex_)[static_cast<size_t>(v)]) {
-                    d.isNode = d.smoothCusp = true;
+                    // A cusp at a singular point of the surface stays a
+                    // node (the oracle counts it) but is no smooth fold:
+                    // the one-ring test decides its side and step, which
+                    // may be none.
+                    d.isNode = true;
+                    d.singularCusp = singularCusp_ && (*singularCusp_)[static_cast<size_t>(v)];
+                    d.smoothCusp = !d.singularCusp;
                 } else if (options_.foldTest == CurtainFoldTest::SmoothCusps &&
                            !nextToInconsistentFace(v)) {
                     d.isNode = false;
@@ -321,6 +329,7 @@ private:
             stats_.zigZagsIgnored += d.zigZag;
             stats_.fallbackFolds += d.fallback;
             stats_.smoothCuspFolds += d.smoothCusp;
+            stats_.singularCuspFolds += d.singularCusp;
             if (!d.isNode)
                 continue;
             const size_t first = groups[g], count = groups[g + 1] - first;
@@ -329,6 +338,7 @@ private:
             graph_.nodes[node].meshVertex = v;
             graph_.nodes[node].unreliable = d.unreliable;
             graph_.nodes[node].smoothCusp = d.smoothCusp;
+            graph_.nodes[node].singularCusp = d.singularCusp;
             stats_.unreliableFolds += d.unreliable;
             // One cut per (curve, point); both edges of a curve through the
             // vertex share it.

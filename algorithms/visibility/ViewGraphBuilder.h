@@ -72,6 +72,10 @@ struct ViewGraphInput {
     // (non-zero) and the radial curvature (NaN where undefined); per face,
     // inconsistent (non-zero: the near-face test applies at its corners).
     const std::vector<std::uint8_t>* cuspVertex = nullptr;
+    // Optional, per vertex: a cusp vertex at a singular point of the surface
+    // (fields::kSingularCusp). Its curtain fold is stepped by the one-ring
+    // test, not by one sheet: the smooth surface's fold does not exist there.
+    const std::vector<std::uint8_t>* singularCusp = nullptr;
     const std::vector<double>* radialCurvature = nullptr;
     const std::vector<std::uint8_t>* faceInconsistent = nullptr;
 };
@@ -101,6 +105,7 @@ struct ViewGraphBuildStats {
     // away from them where the near-face or one-ring test alone would have
     // made a fold (zig-zags of the polyline: no node).
     long long smoothCuspFolds = 0;
+    long long singularCuspFolds = 0; // at cusps on singular points: one-ring step
     long long cuspFoldsSidedByCurvature = 0;
     long long fallbackFolds = 0;
     long long zigZagsIgnored = 0;

@@ -156,6 +156,10 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         flavor == VisibilityFlavor::Consistent
             ? byteField(s, fields::kCusp, false, static_cast<size_t>(mesh.vertexCount()))
             : std::vector<std::uint8_t>{};
+    const std::vector<std::uint8_t> singularCusp =
+        flavor == VisibilityFlavor::Consistent
+            ? byteField(s, fields::kSingularCusp, false, static_cast<size_t>(mesh.vertexCount()))
+            : std::vector<std::uint8_t>{};
     const std::vector<std::uint8_t> faceInconsistent =
         flavor == VisibilityFlavor::Consistent
             ? byteField(s, fields::kConsistent, true, static_cast<size_t>(mesh.faceCount()))
@@ -224,6 +228,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
                                          "per-vertex radial_curvature field");
             input.radialCurvature = kappa;
             input.cuspVertex = &cuspVertex;
+            input.singularCusp = &singularCusp;
             input.faceInconsistent = &faceInconsistent;
         }
         const auto tBuild = std::chrono::steady_clock::now();
@@ -360,6 +365,8 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
         if (parameters.smoothCuspFolds) {
             s.setCounter(counters::kCurtainFoldsAtCusps,
                          static_cast<double>(built.smoothCuspFolds));
+            s.setCounter(counters::kCurtainFoldsAtSingularPoints,
+                         static_cast<double>(built.singularCuspFolds));
             s.setCounter(counters::kCuspFoldsSidedByCurvature,
                          static_cast<double>(built.cuspFoldsSidedByCurvature));
             s.setCounter(counters::kCurtainFoldsByTheNearFaceFallback,
@@ -394,9 +401,14 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     if (perType[ViewNodeType::HiddenFoldCrossing] > 0)
         note << ", " << perType[ViewNodeType::HiddenFoldCrossing]
              << " crossings behind mesh folds off the drawn curves";
-    if (flavor == VisibilityFlavor::Consistent && parameters.smoothCuspFolds)
-        note << ": " << built.smoothCuspFolds << " at the surface's cusps, " << built.fallbackFolds
-             << " by the near-face test next to inconsistent faces";
+    if (flavor == VisibilityFlavor::Consistent && parameters.smoothCuspFolds) {
+        note << ": " << built.smoothCuspFolds << " at the surface's cusps, ";
+        if (built.singularCuspFolds > 0)
+            note << built.singularCuspFolds
+                 << " at cusps on singular points of the surface (stepped by the one-ring "
+                    "test), ";
+        note << built.fallbackFolds << " by the near-face test next to inconsistent faces";
+    }
     note << "), " << graph->rayTests << " ray tests";
     s.notes.push_back(note.str());
     if (!graph->conflicts.empty())
@@ -524,8 +536,9 @@ void addVisibilityPhase(Method& m, VisibilityFlavor flavor) {
             {kCuspFolds,
              "Curtain folds from cusps",
              "Curtain folds only at the surface's cusps (the cusp vertices of §6.2 d), sided by "
-             "the one-ring test, step 1; the near-face test (§8.1) only next to inconsistent "
-             "faces. Off: the near-face test at every contour vertex (§8.1). Not in the paper.",
+             "the one-ring test, step 1 (at a singular point of the surface, the one-ring's "
+             "step); the near-face test (§8.1) only next to inconsistent faces. Off: §8.1 at "
+             "every contour vertex. Not in the paper.",
              ParameterType::Bool,
              true,
              0,

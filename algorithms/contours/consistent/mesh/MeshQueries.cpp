@@ -1,8 +1,10 @@
 #include "contours/consistent/mesh/MeshQueries.h"
 
+#include "surface/SurfaceFields.h"
 #include "surface/SurfaceTessellation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace contour::consistent {
@@ -17,6 +19,13 @@ double sceneScale(const ConsistentMesh& m) {
     const std::shared_ptr<const SurfaceTessellation> t = sharedTessellation(m.surfacePtr(), 1);
     const double d = t->mesh->boundingBox().diagonal();
     return d > 0.0 ? d : 1.0;
+}
+
+bool atSingularPoint(const ConsistentMesh& m, Index v, double scale) {
+    const Curvatures k = curvatures(m.surface().evaluate(m.vertex(v).preimage));
+    const double largest = std::max(std::abs(k.kMin), std::abs(k.kMax));
+    // NaN (no normal) fails the comparison and counts as singular.
+    return !(largest * kSingularRadius * scale <= 1.0);
 }
 
 std::string describeFace(const ConsistentMesh& m, Index f) {

@@ -1,6 +1,7 @@
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
 
 #include "contours/common/SurfacePhase.h"
+#include "contours/consistent/mesh/MeshQueries.h"
 #include "contours/consistent/predicates/RadialTriangles.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
@@ -202,7 +203,8 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     s.mesh = m.toTriangleMesh();
     const TriangleMesh& mesh = *s.mesh;
     const Index nv = m.vertexCount();
-    std::vector<int> face(nv), label(nv), prov(nv), vphase(nv), cusp(nv);
+    std::vector<int> face(nv), label(nv), prov(nv), vphase(nv), cusp(nv), singular(nv, 0);
+    const double scale = sceneScale(m);
     std::vector<Vec3> uv(nv), normal(nv);
     std::vector<double> g(nv), kr(nv), offset(nv);
     for (Index v = 0; v < nv; ++v) {
@@ -216,6 +218,7 @@ void publish(Snapshot& s, ConsistentMesh& m) {
         prov[v] = static_cast<int>(x.provenance);
         vphase[v] = x.phase;
         cusp[v] = x.cusp ? 1 : 0;
+        singular[v] = x.cusp && atSingularPoint(m, v, scale) ? 1 : 0;
         offset[v] = x.normalOffset;
     }
     std::vector<int> fphase(m.faceCount());
@@ -272,6 +275,8 @@ void publish(Snapshot& s, ConsistentMesh& m) {
     s.setField(fields::kVertexChangedByPhase,
                {L::Vertex, std::move(vphase), "phase that created or last changed the vertex"});
     s.setField(fields::kCusp, {L::Vertex, std::move(cusp), "1 at a cusp vertex"});
+    s.setField(fields::kSingularCusp, {L::Vertex, std::move(singular),
+                                       "1 at a cusp vertex where the surface is singular"});
     s.setField(fields::kNormalOffset,
                {L::Vertex, std::move(offset), "offset along n(u) of the normal wiggle"});
     s.setField(fields::kChangedByPhase,
