@@ -171,7 +171,8 @@ nlohmann::json viewGraphJson(const ViewGraph& graph) {
                              {"reason", c.reason},
                              {"from_chain", c.fromChain},
                              {"via_node", c.viaNode},
-                             {"ray_origin", vec3(c.rayOrigin)}});
+                             {"ray_origin", vec3(c.rayOrigin)},
+                             {"root", c.root}});
     const ViewChainTally tally = graph.chainTally();
     nlohmann::json totals = {
         {"chains", graph.chains.size()},

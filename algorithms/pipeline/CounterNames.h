@@ -313,6 +313,10 @@ inline constexpr CounterName kConnectedComponents{"connected-components", "conne
 inline constexpr CounterName kRayTests{"ray-tests", "ray tests"};
 inline constexpr CounterName kConflicts{"conflicts", "conflicts"};
 inline constexpr CounterName kRayCheckConflicts{"ray-check-conflicts", "ray-check conflicts"};
+// ... whose propagation source agrees with its own ray: the first wrong
+// step of each path (VisibilityConflict::root).
+inline constexpr CounterName kRootRayCheckConflicts{"root-ray-check-conflicts",
+                                                    "root ray-check conflicts"};
 inline constexpr CounterName kCheckRaysRecountedExactly{"check-rays-recounted-exactly",
                                                         "check rays recounted exactly"};
 inline constexpr CounterName kCheckRaysCorrectedByTheExactRecount{

@@ -177,6 +177,10 @@ struct VisibilityConflict {
     Index fromChain = kInvalidIndex;
     Index viaNode = kInvalidIndex;
     Vec3 rayOrigin = Vec3::Zero();
+    // A ray check whose propagation source agrees with its own ray (or is a
+    // seed): the first wrong step on its path. The conflicts downstream of it
+    // repeat the same error, so the roots are where to look.
+    bool root = false;
 };
 
 // The chains counted as reports give them: visible (drawn solid), hidden

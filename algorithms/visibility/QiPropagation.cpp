@@ -268,6 +268,13 @@ void checkChainsWithRays(ViewGraph& graph, const TriangleMesh& mesh, const Camer
                            "ray-check: the chain's own ray test disagrees with " + decidedBy));
         }
     }
+    // Roots: the source of the disagreeing step passed its own check.
+    for (VisibilityConflict& k : graph.conflicts)
+        if (k.reason.rfind("ray-check", 0) == 0 &&
+            (k.fromChain == kInvalidIndex || !graph.chains[k.fromChain].conflict)) {
+            k.root = true;
+            ++stats->rootConflicts;
+        }
     stats->checkRays += tested;
     stats->exactRecounts += recounts;
     graph.rayTests += tested + recounts;

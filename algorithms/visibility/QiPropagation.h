@@ -23,6 +23,7 @@ struct QiPropagationStats {
     long long cycleDisagreements = 0; // a chain reached twice with different QI
     long long belowLowerBound = 0;    // propagated QI below the chain's known bound
     long long rayConflicts = 0;       // check rays that disagree with propagation
+    long long rootConflicts = 0;      // ... whose source agrees with its own ray
     long long exactRecounts = 0;      // disagreeing check rays recounted exactly
     long long correctedRays = 0;      // ... whose exact count differed from Embree's
 };

@@ -329,6 +329,7 @@ void runVisibility(VisibilityFlavor flavor, const PhaseContext& ctx, Snapshot& s
     s.setCounter(counters::kRayTests, static_cast<double>(graph->rayTests));
     s.setCounter(counters::kConflicts, static_cast<double>(graph->conflicts.size()));
     s.setCounter(counters::kRayCheckConflicts, static_cast<double>(propagated.rayConflicts));
+    s.setCounter(counters::kRootRayCheckConflicts, static_cast<double>(propagated.rootConflicts));
     s.setCounter(counters::kCheckRaysRecountedExactly,
                  static_cast<double>(propagated.exactRecounts));
     s.setCounter(counters::kCheckRaysCorrectedByTheExactRecount,

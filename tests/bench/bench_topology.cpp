@@ -21,7 +21,9 @@
 //               counts the crossings of the method's contour polylines, to
 //               tell the graph's exactness from its input's
 //   conflicts   visibility conflicts (ray test vs propagation), ambiguous
-//               chains, and both on views with no inconsistent face
+//               chains, and both on views with no inconsistent face; "roots"
+//               are the ray checks whose propagation source passed its own
+//               check (the first wrong step of a path; the others repeat it)
 //   inconsistent faces (% of the final mesh), post-condition violations,
 //               seconds per view (the method only, not the oracle)
 // The oracle misses what lies below its lattice step: loops inside one
@@ -78,7 +80,7 @@ struct ViewFigures {
     int methodCusps = 0, truthCusps = 0, halfCusps = 0;
     int folds = 0, foldsAtCusps = 0, fallbackFolds = 0;
     int tJunctions = 0, truthCrossings = 0, halfCrossings = 0, curveCrossings = 0;
-    int conflicts = 0, ambiguousChains = 0;
+    int conflicts = 0, rootConflicts = 0, ambiguousChains = 0;
     // Image positions of the method's cusp vertices and of the oracle's
     // cusps (for --cusps).
     std::vector<Vec2> methodCuspPixels, truthCuspPixels;
@@ -108,6 +110,8 @@ void readGraph(const Snapshot& s, ViewFigures& out) {
         }
     }
     out.conflicts = static_cast<int>(g.conflicts.size());
+    for (const VisibilityConflict& k : g.conflicts)
+        out.rootConflicts += k.root;
     for (const ViewChain& c : g.chains)
         out.ambiguousChains += c.ambiguous;
 }
@@ -180,6 +184,7 @@ struct Summary {
     long long folds = 0, foldsAtCusps = 0, fallbackFolds = 0, truthCusps = 0;
     long long tJunctions = 0, truthCrossings = 0;
     long long conflicts = 0, conflictsOnConsistentViews = 0, consistentViews = 0;
+    long long rootConflictsOnConsistentViews = 0;
     long long ambiguous = 0, ambiguousOnConsistentViews = 0;
     long long violations = 0, viewsWithViolations = 0;
     double maxInconsistentPercent = 0.0, meanSeconds = 0.0, maxSeconds = 0.0;
@@ -208,6 +213,7 @@ Summary summarize(const MeshFigures& m) {
         if (v.inconsistent == 0.0) {
             ++s.consistentViews;
             s.conflictsOnConsistentViews += v.conflicts;
+            s.rootConflictsOnConsistentViews += v.rootConflicts;
             s.ambiguousOnConsistentViews += v.ambiguousChains;
         }
         const double p = percent(v.inconsistent, v.faces);
@@ -230,7 +236,8 @@ const char* kSummaryHeader =
     "Input,Input count,Success count,Oracle samples,Oracle-settled views,Loops match,"
     "Cusps match,Folds = cusps (settled),T-junctions = crossings (settled),Curtain folds,"
     "Folds at cusps,Fallback folds,Oracle cusps,T-junctions,Oracle crossings,Conflicts,"
-    "Views with 0 inconsistent,Conflicts on those,Ambiguous chains,Ambiguous on those,"
+    "Views with 0 inconsistent,Conflicts on those,Root conflicts on those,Ambiguous "
+    "chains,Ambiguous on those,"
     "Max inconsistent %,Views above 0.05 %,Violations,Views with violations,Runtime,"
     "Max runtime,ConTesse runtime,Skipped\n";
 
@@ -241,7 +248,8 @@ std::string summaryRow(const MeshFigures& m) {
       << s.settled << ',' << s.loopsMatch << ',' << s.cuspsMatch << ',' << s.foldsMatch << ','
       << s.tMatch << ',' << s.folds << ',' << s.foldsAtCusps << ',' << s.fallbackFolds << ','
       << s.truthCusps << ',' << s.tJunctions << ',' << s.truthCrossings << ',' << s.conflicts << ','
-      << s.consistentViews << ',' << s.conflictsOnConsistentViews << ',' << s.ambiguous << ','
+      << s.consistentViews << ',' << s.conflictsOnConsistentViews << ','
+      << s.rootConflictsOnConsistentViews << ',' << s.ambiguous << ','
       << s.ambiguousOnConsistentViews << ',' << s.maxInconsistentPercent << ','
       << s.viewsAboveTarget << ',' << s.violations << ',' << s.viewsWithViolations << ','
       << s.meanSeconds << ',' << s.maxSeconds << ',';
@@ -255,7 +263,7 @@ const char* kViewHeader =
     "mesh,view,completed,seconds,faces,inconsistent,violations,loops,oracle loops,loops match,"
     "cusps,oracle cusps,oracle cusps at half,curtain folds,folds at cusps,fallback folds,"
     "T-junctions,oracle crossings,oracle crossings at half,curve crossings,conflicts,"
-    "ambiguous chains,error\n";
+    "root conflicts,ambiguous chains,error\n";
 
 std::string viewRow(const std::string& mesh, int view, const ViewFigures& v) {
     std::ostringstream o;
@@ -264,7 +272,8 @@ std::string viewRow(const std::string& mesh, int view, const ViewFigures& v) {
       << ',' << v.loopsMatch << ',' << v.methodCusps << ',' << v.truthCusps << ',' << v.halfCusps
       << ',' << v.folds << ',' << v.foldsAtCusps << ',' << v.fallbackFolds << ',' << v.tJunctions
       << ',' << v.truthCrossings << ',' << v.halfCrossings << ',' << v.curveCrossings << ','
-      << v.conflicts << ',' << v.ambiguousChains << ',' << csvEscape(v.error) << '\n';
+      << v.conflicts << ',' << v.rootConflicts << ',' << v.ambiguousChains << ','
+      << csvEscape(v.error) << '\n';
     return o.str();
 }
 
@@ -286,15 +295,16 @@ void printSummary(const MeshFigures& m) {
         return;
     }
     const Summary s = summarize(m);
-    std::printf("%-22s N=%-3d ok %2d/%-2d settled %2d | loops %2d cusps %2d folds=cusps %2d "
-                "T=cross %2d | folds %lld (at cusps %lld, fallback %lld) vs %lld | T %lld vs "
-                "%lld | conflicts %lld (%lld on %lld consistent views) | max inc %.3f%% | "
-                "viol %lld on %lld views | %.3f s/view (max %.3f)",
-                m.name.c_str(), m.samples, s.completed, s.views, s.settled, s.loopsMatch,
-                s.cuspsMatch, s.foldsMatch, s.tMatch, s.folds, s.foldsAtCusps, s.fallbackFolds,
-                s.truthCusps, s.tJunctions, s.truthCrossings, s.conflicts,
-                s.conflictsOnConsistentViews, s.consistentViews, s.maxInconsistentPercent,
-                s.violations, s.viewsWithViolations, s.meanSeconds, s.maxSeconds);
+    std::printf(
+        "%-22s N=%-3d ok %2d/%-2d settled %2d | loops %2d cusps %2d folds=cusps %2d "
+        "T=cross %2d | folds %lld (at cusps %lld, fallback %lld) vs %lld | T %lld vs "
+        "%lld | conflicts %lld (%lld on %lld consistent views, %lld roots) | max inc %.3f%% | "
+        "viol %lld on %lld views | %.3f s/view (max %.3f)",
+        m.name.c_str(), m.samples, s.completed, s.views, s.settled, s.loopsMatch, s.cuspsMatch,
+        s.foldsMatch, s.tMatch, s.folds, s.foldsAtCusps, s.fallbackFolds, s.truthCusps,
+        s.tJunctions, s.truthCrossings, s.conflicts, s.conflictsOnConsistentViews,
+        s.consistentViews, s.rootConflictsOnConsistentViews, s.maxInconsistentPercent, s.violations,
+        s.viewsWithViolations, s.meanSeconds, s.maxSeconds);
     if (m.published)
         std::printf(" | ConTesse %.3f s", *m.published);
     std::printf("\n");
