@@ -42,6 +42,19 @@ void verifyNoViolations(const Snapshot& s) {
                                                    c.firstExample)));
 }
 
+// Runs one protocol view of a mesh of ../shared/meshes and checks every
+// phase's post-conditions; false when the mesh is absent.
+bool postConditionsHoldOnView(const std::string& name, size_t view) {
+    const auto cage = sharedMesh(name);
+    if (!cage)
+        return false;
+    const std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
+    const MethodRun r = runCatmullClark(cage, views[view]);
+    for (const Snapshot& s : r.snapshots)
+        verifyNoViolations(s);
+    return true;
+}
+
 // Per phase: total inconsistent faces, worst view, total faces.
 struct Tally {
     double inconsistent[2] = {0, 0}, worst[2] = {0, 0}, faces[2] = {0, 0};
@@ -220,13 +233,18 @@ private slots:
     // wiggle's tolerance (7.846e-9) failed the next check, which had
     // measured a smaller box (7.843e-9), in every phase after it.
     void toleranceScaleIsTheSameInEveryPhase() {
-        const auto cage = sharedMesh("monsterfrog");
-        if (!cage)
+        if (!postConditionsHoldOnView("monsterfrog", 23))
             QSKIP("../shared/meshes/monsterfrog.obj is absent");
-        const std::vector<Camera> views = Camera::views26(cage->boundingBox(), Viewport{800, 600});
-        const MethodRun r = runCatmullClark(cage, views[23]);
-        for (const Snapshot& s : r.snapshots)
-            verifyNoViolations(s);
+    }
+
+    // Appendix B's chart of a face extended across its edges is cut at a
+    // domain vertex of valence 3 (DomainCharts::cutBetweenNeighbours).
+    // Read in such a chart, a face of ogre's view 6 with corners in the
+    // three domain faces around such a vertex looked folded in parameter
+    // space from contour insertion on (8 violations over the phases).
+    void noFoldReadInACutChart() {
+        if (!postConditionsHoldOnView("ogre_controlmesh", 6))
+            QSKIP("../shared/meshes/ogre_controlmesh.obj is absent");
     }
 
     // §6.2 e's snap rule with chart-vertex-rings (appendix B's charts of a

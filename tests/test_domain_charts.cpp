@@ -11,6 +11,7 @@
 #include "contours/consistent/mesh/ConsistentMesh.h"
 #include "contours/consistent/mesh/DomainCharts.h"
 #include "contours/consistent/mesh/VertexEvaluator.h"
+#include "core/Predicates.h"
 #include "mesh/io/MeshReader.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceFields.h"
@@ -298,6 +299,62 @@ private slots:
         QCOMPARE(c.parameterOrientationIn(
                      {DomainCharts::span(r2), DomainCharts::span(r1), DomainCharts::span(r0)}),
                  std::optional<int>(-1));
+    }
+
+    // At a domain vertex of valence 3 (a cube corner) the third face's
+    // chart extended across its two edges is cut along the other two
+    // faces' shared edge: a triangle with a corner at the vertex and one in
+    // each of those faces reads a quarter turn too much there. Every chart
+    // offered must agree on the triangle's orientation (the two faces' own
+    // charts do), and a point on the cut edge is held once.
+    void chartCutAtAValenceThreeCorner() {
+        const PolygonMesh& domain = cubeSurface()->domain();
+        Index w = kInvalidIndex;
+        for (Index x = 0; x < domain.vertexCount() && w == kInvalidIndex; ++x)
+            if (facesAround(x).size() == 3)
+                w = x;
+        QVERIFY(w != kInvalidIndex);
+        const std::vector<Index> around = facesAround(w);
+        const DomainCharts c = charts();
+        for (int k = 0; k < 3; ++k) {
+            const Index n1 = around[static_cast<size_t>(k)];
+            const Index n2 = around[static_cast<size_t>((k + 1) % 3)];
+            const Preimage vertex = atCorner(n1, cornerOf(n1, w));
+            int triangles = 0, disagreements = 0;
+            for (int i = 1; i < 10; i += 2)
+                for (int j = 1; j < 10; j += 2)
+                    for (int i2 = 1; i2 < 10; i2 += 2)
+                        for (int j2 = 1; j2 < 10; j2 += 2) {
+                            const std::array<Preimage, 3> t{vertex, Preimage{n1, 0.1 * i, 0.1 * j},
+                                                            Preimage{n2, 0.1 * i2, 0.1 * j2}};
+                            const std::vector<std::array<Vec2, 3>> in = c.chartCoordinates(t);
+                            QVERIFY(!in.empty());
+                            std::set<int> signs;
+                            for (const auto& x : in)
+                                if (const int o = orientation2d(x[0], x[1], x[2]); o != 0)
+                                    signs.insert(o);
+                            ++triangles;
+                            disagreements += signs.size() > 1 ? 1 : 0;
+                        }
+            QCOMPARE(triangles, 625);
+            QCOMPARE(disagreements, 0);
+        }
+        // A point on the shared edge of two of the faces, with a corner in
+        // each of them: the third face's chart would hold it twice.
+        const Index n1 = around[0], n2 = around[1];
+        Preimage onEdge{};
+        for (int e = 0; e < 4; ++e)
+            if (cubeSurface()->neighbor(n1, e).face == n2) {
+                const Vec2 a = SmoothSurface::cornerCoordinates(true, e);
+                const Vec2 b = SmoothSurface::cornerCoordinates(true, (e + 1) % 4);
+                const Vec2 m = 0.5 * (a + b);
+                onEdge = {n1, m.x(), m.y()};
+            }
+        QCOMPARE(c.equivalents(onEdge).size(), size_t(2));
+        const std::array<Preimage, 3> t{onEdge, Preimage{n1, 0.5, 0.5}, Preimage{n2, 0.5, 0.5}};
+        for (const auto& x : c.chartCoordinates(t))
+            QCOMPARE(orientation2d(x[0], x[1], x[2]), *c.parameterOrientation(t));
+        QVERIFY(c.parameterOrientation(t).has_value());
     }
 
     // Two faces sharing only a regular corner: no edge chart joins them

@@ -120,6 +120,37 @@ std::optional<Vec2> DomainCharts::inChart(PreimageSpan reps, Index face) const {
     return std::nullopt;
 }
 
+// Around a domain vertex of valence 3 a face's two edge neighbours are
+// neighbours of each other, and the face's chart extended across both edges
+// is cut along their shared edge: that edge appears twice, a quarter turn
+// apart, so a point on it is held at two places and a triangle with corners
+// in both neighbours is drawn across the cut, folded or not regardless of
+// the surface. Such a chart is not one of the corners' common charts.
+bool DomainCharts::cutBetweenNeighbours(const std::array<PreimageSpan, 3>& reps, Index face) const {
+    std::array<Index, 12> via{};
+    int count = 0;
+    const auto isNeighbour = [&](Index a, Index b) {
+        for (int e = 0; e < cornerCount(a); ++e)
+            if (surface_->neighbor(a, e).face == b)
+                return true;
+        return false;
+    };
+    for (const PreimageSpan& r : reps) {
+        if (std::any_of(r.begin(), r.end(), [&](const Preimage& x) { return x.face == face; }))
+            continue;
+        for (const Preimage& x : r)
+            if (isNeighbour(x.face, face) &&
+                std::find(via.begin(), via.begin() + count, x.face) == via.begin() + count &&
+                count < static_cast<int>(via.size()))
+                via[static_cast<size_t>(count++)] = x.face;
+    }
+    for (int i = 0; i < count; ++i)
+        for (int j = i + 1; j < count; ++j)
+            if (isNeighbour(via[static_cast<size_t>(i)], via[static_cast<size_t>(j)]))
+                return true;
+    return false;
+}
+
 std::optional<Preimage> DomainCharts::acrossRegularCorner(const Preimage& r, Index face) const {
     if (!vertexRingCharts_)
         return std::nullopt;
@@ -262,6 +293,8 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
                             [&](const Preimage& x) { return x.face == chart.face; }))
                 continue;
             tried.push_back(chart);
+            if (cutBetweenNeighbours(reps, chart.face))
+                continue;
             std::array<Vec2, 3> c;
             bool all = true;
             for (int i = 0; i < 3 && all; ++i) {
@@ -293,11 +326,12 @@ bool DomainCharts::withinEdgeCharts(const std::array<Preimage, 3>& p) const {
     };
     if (!pairShares(reps[0], reps[1]) || !pairShares(reps[0], reps[2]))
         return false;
+    const std::array<PreimageSpan, 3> spans{span(reps[0]), span(reps[1]), span(reps[2])};
     for (const auto& candidates : reps)
         for (const Preimage& chart : candidates) {
-            bool all = true;
+            bool all = !cutBetweenNeighbours(spans, chart.face);
             for (int i = 0; i < 3 && all; ++i)
-                all = inEdgeChart(span(reps[i]), chart.face).has_value();
+                all = inEdgeChart(spans[static_cast<size_t>(i)], chart.face).has_value();
             if (all)
                 return true;
         }
