@@ -50,6 +50,11 @@ void checkOptions(const SplineViewGraphOptions& o) {
     if (!positive(o.crossingResidualPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: crossingResidualPixels must be positive");
+    if (o.cuspBranchPieces < 1 || o.cuspBranchHalvings < 0 || o.cuspBranchHalvings > 60)
+        throw std::invalid_argument("buildSplineViewGraph: cuspBranchPieces must be >= 1 and "
+                                    "cuspBranchHalvings in 0..60");
+    if (!positive(o.crossingSidePixels))
+        throw std::invalid_argument("buildSplineViewGraph: crossingSidePixels must be positive");
     if (!nonNegative(o.coneCrossingPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: coneCrossingPixels must be non-negative");
@@ -122,6 +127,11 @@ private:
     void sampleLink(Index c, Index link, std::vector<Station>& out) const;
     void evaluateStations(Polyline& poly) const;
     void findCrossings();
+    // Whether polyline cb changes sides of polyline ca where they meet, at
+    // parameters sa and sb.
+    // parameters sa and sb: both sides farther from ca than the crossing's
+    // residual (pixels), so that round-off cannot make the sign.
+    bool changesSides(Index ca, double sa, Index cb, double sb, double residual) const;
     void addEndNodes();
     void cutChains();
     void rayTests();
@@ -534,20 +544,24 @@ void Builder::findCrossings() {
     const auto pixelOf = [&](const Vec3& p) {
         return camera_.project(transform_.invert(p)).pixel;
     };
-    for (const ImageCrossing& x : found.crossings) {
-        if (ignore(x.first, x.second))
-            continue;
+    // One crossing of chords of polylines ca and cb near `point` (pixels),
+    // at sa in [la, ha] and sb in [lb, hb].
+    // cuspA >= 0: ca == cb and the chords are on the two sides of a cusp,
+    // at cuspA before sa's side and cuspB after sb's (the same point, L and
+    // 0 on a loop); the crossing must lie on both branches, away from the
+    // cusp where they meet trivially.
+    const auto candidate = [&](Index ca, double sa, double la, double ha, Index cb, double sb,
+                               double lb, double hb, const Vec2& point, double cuspA,
+                               double cuspB) {
         // §4.2: the loops through a cone meet there at one surface point;
         // a crossing next to it is that meeting, not an occlusion.
         bool atCone = false;
         for (const Vec2& c : cones)
-            atCone = atCone || (c - x.point).norm() <= o_.coneCrossingPixels;
+            atCone = atCone || (c - point).norm() <= o_.coneCrossingPixels;
         if (atCone) {
             ++out_.stats.coneCrossings;
-            continue;
+            return;
         }
-        const Index ca = owner[x.first].first, cb = owner[x.second].first;
-        double sa = chordS(x.first, x.point), sb = chordS(x.second, x.point);
         Polyline& pa = polys_[ca];
         Polyline& pb = polys_[cb];
         // A crossing through a sample is reported by both chords there.
@@ -563,15 +577,13 @@ void Builder::findCrossings() {
                         (old[0] == key[0] && old[2] == key[2] &&
                          std::abs(old[1] - key[1]) <= 1e-12 && std::abs(old[3] - key[3]) <= 1e-12);
         if (duplicate)
-            continue;
+            return;
         seen.push_back(key);
         // The chords cross within the chord error of the curves: Newton on
         // p_a(s_a).xy = p_b(s_b).xy (transformed xy is an affine image of
         // the pixels) moves the node onto both curves, within the two chords
         // and their neighbours (the curves' crossing can lie just past a
         // chord's end).
-        const auto [la, ha] = chordRange(x.first);
-        const auto [lb, hb] = chordRange(x.second);
         ChainPoint a, b;
         // Newton within the chords, or (widen) also their neighbours.
         const auto newton = [&](double& ta, double& tb, bool widen) {
@@ -647,8 +659,25 @@ void Builder::findCrossings() {
             }
             if (!onCurves) {
                 ++out_.stats.chordOnlyCrossings;
-                continue;
+                return;
             }
+        }
+        // Two branches that touch without crossing pass the residual test:
+        // where the contour runs along a patch side, a boundary cusp's two
+        // branches run back along each other within 1e-9 px, and their
+        // chords cross. §4.2's T-junction is a crossing of the image curves:
+        // the far curve must change sides of the other one there.
+        if (o_.crossingNewtonSteps > 0 &&
+            !changesSides(ca, sa, cb, sb, (pixelOf(a.p) - pixelOf(b.p)).norm())) {
+            ++out_.stats.touchingCrossings;
+            return;
+        }
+        if (cuspA >= 0.0) {
+            const Vec2 at = pixelOf(evaluate(*pa.chain, cuspB).p);
+            const bool apart = (pixelOf(a.p) - at).norm() > o_.crossingSidePixels &&
+                               (pixelOf(b.p) - at).norm() > o_.crossingSidePixels;
+            if (!apart || !(sa < cuspA && sb > cuspB))
+                return;
         }
         // The same crossing of the curves found from two pairs of chords.
         bool again = false;
@@ -659,7 +688,7 @@ void Builder::findCrossings() {
                     (old[0] == cb && old[2] == ca && std::abs(old[1] - sb) <= 1e-9 &&
                      std::abs(old[3] - sa) <= 1e-9);
         if (again)
-            continue;
+            return;
         onBoth.push_back({double(ca), sa, double(cb), sb});
         sa = wrapped(pa, sa);
         sb = wrapped(pb, sb);
@@ -702,6 +731,78 @@ void Builder::findCrossings() {
         pending_[cr.nearPoly].push_back({cr.nearS, node});
         pending_[cr.farPoly].push_back({cr.farS, node});
         ++out_.stats.tJunctions;
+        out_.stats.cuspBranchCrossings += cuspA >= 0.0;
+    };
+    for (const ImageCrossing& x : found.crossings) {
+        if (ignore(x.first, x.second))
+            continue;
+        const auto [la, ha] = chordRange(x.first);
+        const auto [lb, hb] = chordRange(x.second);
+        candidate(owner[x.first].first, chordS(x.first, x.point), la, ha, owner[x.second].first,
+                  chordS(x.second, x.point), lb, hb, x.point, -1.0, -1.0);
+    }
+    // The two branches of a cusp leave it along one image direction, and
+    // their chords there are adjacent, so the chord test never compares
+    // them; yet they can cross again within those chords (where the
+    // contour runs along a patch side, a boundary cusp's branches run back
+    // along each other). Finer chords of both, geometrically finer towards
+    // the cusp, are tested against each other.
+    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
+        const Polyline& poly = polys_[c];
+        const Index n = static_cast<Index>(poly.stations.size());
+        for (Index i = 0; i < n; ++i) {
+            const Index node = poly.stations[i].node;
+            if (node == kInvalidIndex || out_.graph.nodes[node].type != ViewNodeType::CurtainFold)
+                continue;
+            if (!poly.closed && (i == 0 || i + 1 >= n))
+                continue;
+            const Index before = i == 0 ? n - 1 : i - 1;
+            const double s = poly.stations[i].s;
+            const double s0 = poly.stations[before].s, s1 = poly.chordEndS(i);
+            const double e0 = poly.chordEndS(before); // s, or L for a loop's last chord
+            std::vector<double> lo{s0}, hi{s};
+            for (int k = 1; k < o_.cuspBranchPieces; ++k) {
+                lo.push_back(s0 + (e0 - s0) * k / o_.cuspBranchPieces);
+                hi.push_back(s + (s1 - s) * k / o_.cuspBranchPieces);
+            }
+            for (int m = 0; m < o_.cuspBranchHalvings; ++m) {
+                const double f = std::ldexp(1.0 / o_.cuspBranchPieces, -m - 1);
+                lo.push_back(e0 - f * (e0 - s0));
+                hi.push_back(s + f * (s1 - s));
+            }
+            lo.push_back(e0);
+            hi.push_back(s1);
+            std::sort(lo.begin(), lo.end());
+            std::sort(hi.begin(), hi.end());
+            lo.erase(std::unique(lo.begin(), lo.end()), lo.end());
+            hi.erase(std::unique(hi.begin(), hi.end()), hi.end());
+            std::vector<ImageSegment> pieces;
+            std::vector<std::pair<double, double>> range;
+            for (const std::vector<double>* side : {&lo, &hi})
+                for (size_t k = 0; k + 1 < side->size(); ++k) {
+                    pieces.push_back({pixelOf(evaluate(*poly.chain, (*side)[k]).p),
+                                      pixelOf(evaluate(*poly.chain, (*side)[k + 1]).p)});
+                    range.push_back({(*side)[k], (*side)[k + 1]});
+                }
+            const Index first = static_cast<Index>(lo.size()) - 1;
+            const ImageIntersectionResult meet = imageIntersections(pieces, [&](Index u, Index v) {
+                // Pieces of one branch, and the two that meet at the cusp.
+                return (u < first) == (v < first) || (u == first - 1 && v == first);
+            });
+            for (const ImageCrossing& y : meet.crossings) {
+                const auto along = [&](Index k) {
+                    const Vec2 d = pieces[k].b - pieces[k].a;
+                    const double len2 = d.squaredNorm();
+                    const double t =
+                        len2 > 0.0 ? std::clamp((y.point - pieces[k].a).dot(d) / len2, 0.0, 1.0)
+                                   : 0.0;
+                    return range[k].first + t * (range[k].second - range[k].first);
+                };
+                candidate(c, along(y.first), range[y.first].first, range[y.first].second, c,
+                          along(y.second), range[y.second].first, range[y.second].second, y.point,
+                          e0, s);
+            }
+        }
     }
     // Insert the crossing stations into the sampled polylines.
     for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
@@ -721,6 +822,65 @@ void Builder::findCrossings() {
         if (changed)
             evaluateStations(poly);
     }
+}
+
+bool Builder::changesSides(Index ca, double sa, Index cb, double sb, double residual) const {
+    const Polyline& pa = polys_[ca];
+    const Polyline& pb = polys_[cb];
+    const auto pixelOf = [&](const Vec3& p) {
+        return camera_.project(transform_.invert(p)).pixel;
+    };
+    // Half the room around s on a polyline: to its ends and its nearest node
+    // (a cusp turns the curve back).
+    const auto roomAround = [&](Index c, double s) {
+        const Polyline& poly = polys_[c];
+        double room = 0.5 * (poly.closed ? poly.length : std::min(s, poly.length - s));
+        for (const Station& st : pending_[c]) {
+            double d = std::abs(st.s - s);
+            if (poly.closed)
+                d = std::min(d, poly.length - d);
+            room = std::min(room, 0.5 * d);
+        }
+        return room;
+    };
+    // Offsets along b: about sidePixels away in the image, within its room.
+    const double room = roomAround(cb, sb);
+    const ChainPoint at = evaluate(*pb.chain, sb);
+    constexpr double kProbe = 1e-7;
+    const double speed = (pixelOf(at.p + kProbe * at.tangent) - pixelOf(at.p)).norm() / kProbe;
+    const double h = speed > 0.0 ? std::min(room, o_.crossingSidePixels / speed) : room;
+    if (!(h > 0.0))
+        return false;
+    const auto wrap = [](const Polyline& poly, double s) {
+        if (!poly.closed)
+            return std::clamp(s, 0.0, poly.length);
+        s = std::fmod(s, poly.length);
+        return s < 0.0 ? s + poly.length : s;
+    };
+    // The side of q (pixels) of curve a, at q's closest point on a (Gauss-
+    // Newton from sa in the image) within a's room around sa.
+    const double roomA = roomAround(ca, sa);
+    const auto sideOf = [&](const Vec2& q) {
+        double off = 0.0;
+        Vec2 x = Vec2::Zero(), d = Vec2::Zero();
+        for (int it = 0; it < 2 * o_.crossingNewtonSteps + 1; ++it) {
+            const ChainPoint c = evaluate(*pa.chain, wrap(pa, sa + off));
+            x = pixelOf(c.p);
+            d = (pixelOf(c.p + kProbe * c.tangent) - x) / kProbe;
+            const double d2 = d.squaredNorm();
+            if (!(d2 > 0.0))
+                break;
+            const double step = (q - x).dot(d) / d2;
+            if (!std::isfinite(step) || step == 0.0)
+                break;
+            off = std::clamp(off + step, -roomA, roomA);
+        }
+        return cross2(d.normalized(), q - x);
+    };
+    const double before = sideOf(pixelOf(evaluate(*pb.chain, wrap(pb, sb - h)).p));
+    const double after = sideOf(pixelOf(evaluate(*pb.chain, wrap(pb, sb + h)).p));
+    const double floor = 8.0 * residual;
+    return (before < -floor && after > floor) || (before > floor && after < -floor);
 }
 
 // Chain ends: cones (one node per cone point, shared by its chains), the
