@@ -559,8 +559,6 @@ inline constexpr CounterName kChordOnlyCrossings{
     "chord-only-crossings", "crossings of the sampled chords the curves do not have"};
 inline constexpr CounterName kTouchingCrossings{
     "touching-crossings", "places where the curves meet without crossing, left out"};
-inline constexpr CounterName kCuspBranchCrossings{
-    "cusp-branch-crossings", "T-junctions between the two branches of one cusp"};
 // Its steps' seconds, in the order they run.
 inline constexpr CounterName kCuspPlacementSeconds{"cusp-placement-seconds",
                                                    "seconds placing cusps on the chains"};

@@ -1151,7 +1151,6 @@ void runVisibility(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kPropagatedChains, stats.propagatedChains);
     s.setCounter(counters::kChordOnlyCrossings, static_cast<double>(stats.chordOnlyCrossings));
     s.setCounter(counters::kTouchingCrossings, static_cast<double>(stats.touchingCrossings));
-    s.setCounter(counters::kCuspBranchCrossings, static_cast<double>(stats.cuspBranchCrossings));
     s.setCounter(counters::kCuspPlacementSeconds, stats.secondsCusps);
     s.setCounter(counters::kSamplingSeconds, stats.secondsSampling);
     s.setCounter(counters::kIntersectionSeconds, stats.secondsIntersections);

@@ -50,9 +50,6 @@ void checkOptions(const SplineViewGraphOptions& o) {
     if (!positive(o.crossingResidualPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: crossingResidualPixels must be positive");
-    if (o.cuspBranchPieces < 1 || o.cuspBranchHalvings < 0 || o.cuspBranchHalvings > 60)
-        throw std::invalid_argument("buildSplineViewGraph: cuspBranchPieces must be >= 1 and "
-                                    "cuspBranchHalvings in 0..60");
     if (!positive(o.crossingSidePixels))
         throw std::invalid_argument("buildSplineViewGraph: crossingSidePixels must be positive");
     if (!nonNegative(o.coneCrossingPixels))
@@ -546,13 +543,8 @@ void Builder::findCrossings() {
     };
     // One crossing of chords of polylines ca and cb near `point` (pixels),
     // at sa in [la, ha] and sb in [lb, hb].
-    // cuspA >= 0: ca == cb and the chords are on the two sides of a cusp,
-    // at cuspA before sa's side and cuspB after sb's (the same point, L and
-    // 0 on a loop); the crossing must lie on both branches, away from the
-    // cusp where they meet trivially.
     const auto candidate = [&](Index ca, double sa, double la, double ha, Index cb, double sb,
-                               double lb, double hb, const Vec2& point, double cuspA,
-                               double cuspB) {
+                               double lb, double hb, const Vec2& point) {
         // §4.2: the loops through a cone meet there at one surface point;
         // a crossing next to it is that meeting, not an occlusion.
         bool atCone = false;
@@ -672,13 +664,6 @@ void Builder::findCrossings() {
             ++out_.stats.touchingCrossings;
             return;
         }
-        if (cuspA >= 0.0) {
-            const Vec2 at = pixelOf(evaluate(*pa.chain, cuspB).p);
-            const bool apart = (pixelOf(a.p) - at).norm() > o_.crossingSidePixels &&
-                               (pixelOf(b.p) - at).norm() > o_.crossingSidePixels;
-            if (!apart || !(sa < cuspA && sb > cuspB))
-                return;
-        }
         // The same crossing of the curves found from two pairs of chords.
         bool again = false;
         for (const std::array<double, 4>& old : onBoth)
@@ -731,7 +716,6 @@ void Builder::findCrossings() {
         pending_[cr.nearPoly].push_back({cr.nearS, node});
         pending_[cr.farPoly].push_back({cr.farS, node});
         ++out_.stats.tJunctions;
-        out_.stats.cuspBranchCrossings += cuspA >= 0.0;
     };
     for (const ImageCrossing& x : found.crossings) {
         if (ignore(x.first, x.second))
@@ -739,70 +723,7 @@ void Builder::findCrossings() {
         const auto [la, ha] = chordRange(x.first);
         const auto [lb, hb] = chordRange(x.second);
         candidate(owner[x.first].first, chordS(x.first, x.point), la, ha, owner[x.second].first,
-                  chordS(x.second, x.point), lb, hb, x.point, -1.0, -1.0);
-    }
-    // The two branches of a cusp leave it along one image direction, and
-    // their chords there are adjacent, so the chord test never compares
-    // them; yet they can cross again within those chords (where the
-    // contour runs along a patch side, a boundary cusp's branches run back
-    // along each other). Finer chords of both, geometrically finer towards
-    // the cusp, are tested against each other.
-    for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
-        const Polyline& poly = polys_[c];
-        const Index n = static_cast<Index>(poly.stations.size());
-        for (Index i = 0; i < n; ++i) {
-            const Index node = poly.stations[i].node;
-            if (node == kInvalidIndex || out_.graph.nodes[node].type != ViewNodeType::CurtainFold)
-                continue;
-            if (!poly.closed && (i == 0 || i + 1 >= n))
-                continue;
-            const Index before = i == 0 ? n - 1 : i - 1;
-            const double s = poly.stations[i].s;
-            const double s0 = poly.stations[before].s, s1 = poly.chordEndS(i);
-            const double e0 = poly.chordEndS(before); // s, or L for a loop's last chord
-            std::vector<double> lo{s0}, hi{s};
-            for (int k = 1; k < o_.cuspBranchPieces; ++k) {
-                lo.push_back(s0 + (e0 - s0) * k / o_.cuspBranchPieces);
-                hi.push_back(s + (s1 - s) * k / o_.cuspBranchPieces);
-            }
-            for (int m = 0; m < o_.cuspBranchHalvings; ++m) {
-                const double f = std::ldexp(1.0 / o_.cuspBranchPieces, -m - 1);
-                lo.push_back(e0 - f * (e0 - s0));
-                hi.push_back(s + f * (s1 - s));
-            }
-            lo.push_back(e0);
-            hi.push_back(s1);
-            std::sort(lo.begin(), lo.end());
-            std::sort(hi.begin(), hi.end());
-            lo.erase(std::unique(lo.begin(), lo.end()), lo.end());
-            hi.erase(std::unique(hi.begin(), hi.end()), hi.end());
-            std::vector<ImageSegment> pieces;
-            std::vector<std::pair<double, double>> range;
-            for (const std::vector<double>* side : {&lo, &hi})
-                for (size_t k = 0; k + 1 < side->size(); ++k) {
-                    pieces.push_back({pixelOf(evaluate(*poly.chain, (*side)[k]).p),
-                                      pixelOf(evaluate(*poly.chain, (*side)[k + 1]).p)});
-                    range.push_back({(*side)[k], (*side)[k + 1]});
-                }
-            const Index first = static_cast<Index>(lo.size()) - 1;
-            const ImageIntersectionResult meet = imageIntersections(pieces, [&](Index u, Index v) {
-                // Pieces of one branch, and the two that meet at the cusp.
-                return (u < first) == (v < first) || (u == first - 1 && v == first);
-            });
-            for (const ImageCrossing& y : meet.crossings) {
-                const auto along = [&](Index k) {
-                    const Vec2 d = pieces[k].b - pieces[k].a;
-                    const double len2 = d.squaredNorm();
-                    const double t =
-                        len2 > 0.0 ? std::clamp((y.point - pieces[k].a).dot(d) / len2, 0.0, 1.0)
-                                   : 0.0;
-                    return range[k].first + t * (range[k].second - range[k].first);
-                };
-                candidate(c, along(y.first), range[y.first].first, range[y.first].second, c,
-                          along(y.second), range[y.second].first, range[y.second].second, y.point,
-                          e0, s);
-            }
-        }
+                  chordS(x.second, x.point), lb, hb, x.point);
     }
     // Insert the crossing stations into the sampled polylines.
     for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {

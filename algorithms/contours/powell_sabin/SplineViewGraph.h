@@ -92,11 +92,6 @@ struct SplineViewGraphOptions {
     // that touch within the residual do not cross.
     double crossingResidualPixels = 1e-6;
     double crossingSidePixels = 1e-3;
-    // The chords on either side of a cusp are searched for crossings of the
-    // cusp's two branches with this many uniform pieces each, plus this many
-    // halvings of the piece next to the cusp. Not from the paper.
-    int cuspBranchPieces = 16;
-    int cuspBranchHalvings = 30;
     // Crossings of the sampled chords closer than this (pixels) to a cone
     // point are the loops meeting at the cone (§4.2), not T-junctions: they
     // are left out and counted. Not from the paper.
@@ -142,7 +137,6 @@ struct SplineViewGraphStats {
     Index coneCrossings = 0;        // chord crossings at a cone point, left out
     Index chordOnlyCrossings = 0;   // chord crossings the exact curves do not have, left out
     Index touchingCrossings = 0;    // curves that meet there without crossing, left out
-    Index cuspBranchCrossings = 0;  // T-junctions between the two branches of a cusp
     Index conePoints = 0;
     Index boundaryEnds = 0;
     Index curveEnds = 0;
