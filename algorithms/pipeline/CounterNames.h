@@ -557,6 +557,8 @@ inline constexpr CounterName kPropagatedChains{"propagated-chains",
                                                "chains given their QI by propagation"};
 inline constexpr CounterName kChordOnlyCrossings{
     "chord-only-crossings", "crossings of the sampled chords the curves do not have"};
+inline constexpr CounterName kTouchingCrossings{
+    "touching-crossings", "places where the curves meet without crossing, left out"};
 // Its steps' seconds, in the order they run.
 inline constexpr CounterName kCuspPlacementSeconds{"cusp-placement-seconds",
                                                    "seconds placing cusps on the chains"};

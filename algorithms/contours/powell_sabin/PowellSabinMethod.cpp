@@ -1150,6 +1150,7 @@ void runVisibility(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kUncheckedCuspSteps, stats.uncheckedCuspSteps);
     s.setCounter(counters::kPropagatedChains, stats.propagatedChains);
     s.setCounter(counters::kChordOnlyCrossings, static_cast<double>(stats.chordOnlyCrossings));
+    s.setCounter(counters::kTouchingCrossings, static_cast<double>(stats.touchingCrossings));
     s.setCounter(counters::kCuspPlacementSeconds, stats.secondsCusps);
     s.setCounter(counters::kSamplingSeconds, stats.secondsSampling);
     s.setCounter(counters::kIntersectionSeconds, stats.secondsIntersections);

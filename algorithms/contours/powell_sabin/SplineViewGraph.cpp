@@ -50,6 +50,8 @@ void checkOptions(const SplineViewGraphOptions& o) {
     if (!positive(o.crossingResidualPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: crossingResidualPixels must be positive");
+    if (!positive(o.crossingSidePixels))
+        throw std::invalid_argument("buildSplineViewGraph: crossingSidePixels must be positive");
     if (!nonNegative(o.coneCrossingPixels))
         throw std::invalid_argument(
             "buildSplineViewGraph: coneCrossingPixels must be non-negative");
@@ -122,6 +124,11 @@ private:
     void sampleLink(Index c, Index link, std::vector<Station>& out) const;
     void evaluateStations(Polyline& poly) const;
     void findCrossings();
+    // Whether polyline cb changes sides of polyline ca where they meet, at
+    // parameters sa and sb.
+    // parameters sa and sb: both sides farther from ca than the crossing's
+    // residual (pixels), so that round-off cannot make the sign.
+    bool changesSides(Index ca, double sa, Index cb, double sb, double residual) const;
     void addEndNodes();
     void cutChains();
     void rayTests();
@@ -534,20 +541,19 @@ void Builder::findCrossings() {
     const auto pixelOf = [&](const Vec3& p) {
         return camera_.project(transform_.invert(p)).pixel;
     };
-    for (const ImageCrossing& x : found.crossings) {
-        if (ignore(x.first, x.second))
-            continue;
+    // One crossing of chords of polylines ca and cb near `point` (pixels),
+    // at sa in [la, ha] and sb in [lb, hb].
+    const auto candidate = [&](Index ca, double sa, double la, double ha, Index cb, double sb,
+                               double lb, double hb, const Vec2& point) {
         // §4.2: the loops through a cone meet there at one surface point;
         // a crossing next to it is that meeting, not an occlusion.
         bool atCone = false;
         for (const Vec2& c : cones)
-            atCone = atCone || (c - x.point).norm() <= o_.coneCrossingPixels;
+            atCone = atCone || (c - point).norm() <= o_.coneCrossingPixels;
         if (atCone) {
             ++out_.stats.coneCrossings;
-            continue;
+            return;
         }
-        const Index ca = owner[x.first].first, cb = owner[x.second].first;
-        double sa = chordS(x.first, x.point), sb = chordS(x.second, x.point);
         Polyline& pa = polys_[ca];
         Polyline& pb = polys_[cb];
         // A crossing through a sample is reported by both chords there.
@@ -563,15 +569,13 @@ void Builder::findCrossings() {
                         (old[0] == key[0] && old[2] == key[2] &&
                          std::abs(old[1] - key[1]) <= 1e-12 && std::abs(old[3] - key[3]) <= 1e-12);
         if (duplicate)
-            continue;
+            return;
         seen.push_back(key);
         // The chords cross within the chord error of the curves: Newton on
         // p_a(s_a).xy = p_b(s_b).xy (transformed xy is an affine image of
         // the pixels) moves the node onto both curves, within the two chords
         // and their neighbours (the curves' crossing can lie just past a
         // chord's end).
-        const auto [la, ha] = chordRange(x.first);
-        const auto [lb, hb] = chordRange(x.second);
         ChainPoint a, b;
         // Newton within the chords, or (widen) also their neighbours.
         const auto newton = [&](double& ta, double& tb, bool widen) {
@@ -647,8 +651,18 @@ void Builder::findCrossings() {
             }
             if (!onCurves) {
                 ++out_.stats.chordOnlyCrossings;
-                continue;
+                return;
             }
+        }
+        // Two branches that touch without crossing pass the residual test:
+        // where the contour runs along a patch side, a boundary cusp's two
+        // branches run back along each other within 1e-9 px, and their
+        // chords cross. §4.2's T-junction is a crossing of the image curves:
+        // the far curve must change sides of the other one there.
+        if (o_.crossingNewtonSteps > 0 &&
+            !changesSides(ca, sa, cb, sb, (pixelOf(a.p) - pixelOf(b.p)).norm())) {
+            ++out_.stats.touchingCrossings;
+            return;
         }
         // The same crossing of the curves found from two pairs of chords.
         bool again = false;
@@ -659,7 +673,7 @@ void Builder::findCrossings() {
                     (old[0] == cb && old[2] == ca && std::abs(old[1] - sb) <= 1e-9 &&
                      std::abs(old[3] - sa) <= 1e-9);
         if (again)
-            continue;
+            return;
         onBoth.push_back({double(ca), sa, double(cb), sb});
         sa = wrapped(pa, sa);
         sb = wrapped(pb, sb);
@@ -702,6 +716,14 @@ void Builder::findCrossings() {
         pending_[cr.nearPoly].push_back({cr.nearS, node});
         pending_[cr.farPoly].push_back({cr.farS, node});
         ++out_.stats.tJunctions;
+    };
+    for (const ImageCrossing& x : found.crossings) {
+        if (ignore(x.first, x.second))
+            continue;
+        const auto [la, ha] = chordRange(x.first);
+        const auto [lb, hb] = chordRange(x.second);
+        candidate(owner[x.first].first, chordS(x.first, x.point), la, ha, owner[x.second].first,
+                  chordS(x.second, x.point), lb, hb, x.point);
     }
     // Insert the crossing stations into the sampled polylines.
     for (Index c = 0; c < static_cast<Index>(polys_.size()); ++c) {
@@ -721,6 +743,65 @@ void Builder::findCrossings() {
         if (changed)
             evaluateStations(poly);
     }
+}
+
+bool Builder::changesSides(Index ca, double sa, Index cb, double sb, double residual) const {
+    const Polyline& pa = polys_[ca];
+    const Polyline& pb = polys_[cb];
+    const auto pixelOf = [&](const Vec3& p) {
+        return camera_.project(transform_.invert(p)).pixel;
+    };
+    // Half the room around s on a polyline: to its ends and its nearest node
+    // (a cusp turns the curve back).
+    const auto roomAround = [&](Index c, double s) {
+        const Polyline& poly = polys_[c];
+        double room = 0.5 * (poly.closed ? poly.length : std::min(s, poly.length - s));
+        for (const Station& st : pending_[c]) {
+            double d = std::abs(st.s - s);
+            if (poly.closed)
+                d = std::min(d, poly.length - d);
+            room = std::min(room, 0.5 * d);
+        }
+        return room;
+    };
+    // Offsets along b: about sidePixels away in the image, within its room.
+    const double room = roomAround(cb, sb);
+    const ChainPoint at = evaluate(*pb.chain, sb);
+    constexpr double kProbe = 1e-7;
+    const double speed = (pixelOf(at.p + kProbe * at.tangent) - pixelOf(at.p)).norm() / kProbe;
+    const double h = speed > 0.0 ? std::min(room, o_.crossingSidePixels / speed) : room;
+    if (!(h > 0.0))
+        return false;
+    const auto wrap = [](const Polyline& poly, double s) {
+        if (!poly.closed)
+            return std::clamp(s, 0.0, poly.length);
+        s = std::fmod(s, poly.length);
+        return s < 0.0 ? s + poly.length : s;
+    };
+    // The side of q (pixels) of curve a, at q's closest point on a (Gauss-
+    // Newton from sa in the image) within a's room around sa.
+    const double roomA = roomAround(ca, sa);
+    const auto sideOf = [&](const Vec2& q) {
+        double off = 0.0;
+        Vec2 x = Vec2::Zero(), d = Vec2::Zero();
+        for (int it = 0; it < 2 * o_.crossingNewtonSteps + 1; ++it) {
+            const ChainPoint c = evaluate(*pa.chain, wrap(pa, sa + off));
+            x = pixelOf(c.p);
+            d = (pixelOf(c.p + kProbe * c.tangent) - x) / kProbe;
+            const double d2 = d.squaredNorm();
+            if (!(d2 > 0.0))
+                break;
+            const double step = (q - x).dot(d) / d2;
+            if (!std::isfinite(step) || step == 0.0)
+                break;
+            off = std::clamp(off + step, -roomA, roomA);
+        }
+        return cross2(d.normalized(), q - x);
+    };
+    const double before = sideOf(pixelOf(evaluate(*pb.chain, wrap(pb, sb - h)).p));
+    const double after = sideOf(pixelOf(evaluate(*pb.chain, wrap(pb, sb + h)).p));
+    const double floor = 8.0 * residual;
+    return (before < -floor && after > floor) || (before > floor && after < -floor);
 }
 
 // Chain ends: cones (one node per cone point, shared by its chains), the

@@ -86,8 +86,12 @@ struct SplineViewGraphOptions {
     // (0: the chords' crossing, within maxChordPixels of the curves).
     int crossingNewtonSteps = 8;
     // A chord crossing is a T-junction only where Newton brings both curves
-    // within this distance (pixels) of each other.
+    // within this distance (pixels) of each other, and where the second
+    // curve's points this far (pixels) on either side, at most half way to
+    // its nearest node, lie on opposite sides of the first: two branches
+    // that touch within the residual do not cross.
     double crossingResidualPixels = 1e-6;
+    double crossingSidePixels = 1e-3;
     // Crossings of the sampled chords closer than this (pixels) to a cone
     // point are the loops meeting at the cone (§4.2), not T-junctions: they
     // are left out and counted. Not from the paper.
@@ -132,6 +136,7 @@ struct SplineViewGraphStats {
     Index imageOverlaps = 0;        // collinear overlapping chords (not split)
     Index coneCrossings = 0;        // chord crossings at a cone point, left out
     Index chordOnlyCrossings = 0;   // chord crossings the exact curves do not have, left out
+    Index touchingCrossings = 0;    // curves that meet there without crossing, left out
     Index conePoints = 0;
     Index boundaryEnds = 0;
     Index curveEnds = 0;
