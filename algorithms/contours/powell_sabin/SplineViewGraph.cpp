@@ -125,7 +125,6 @@ private:
     void evaluateStations(Polyline& poly) const;
     void findCrossings();
     // Whether polyline cb changes sides of polyline ca where they meet, at
-    // parameters sa and sb.
     // parameters sa and sb: both sides farther from ca than the crossing's
     // residual (pixels), so that round-off cannot make the sign.
     bool changesSides(Index ca, double sa, Index cb, double sb, double residual) const;
