@@ -339,6 +339,14 @@ private slots:
             QCOMPARE(triangles, 625);
             QCOMPARE(disagreements, 0);
         }
+        // A corner in each of the three faces: every chart is cut, and the
+        // cut ones still give the triangle an orientation (no chart would
+        // leave the face without one).
+        const std::array<Preimage, 3> ring{nearCorner(around[0], cornerOf(around[0], w)),
+                                           nearCorner(around[1], cornerOf(around[1], w)),
+                                           nearCorner(around[2], cornerOf(around[2], w))};
+        QCOMPARE(c.chartCoordinates(ring).size(), size_t(3));
+        QVERIFY(c.parameterOrientation(ring).has_value());
         // A point on the shared edge of two of the faces, with a corner in
         // each of them: the third face's chart would hold it twice.
         const Index n1 = around[0], n2 = around[1];

@@ -285,27 +285,38 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
     if (any)
         return;
     // Otherwise every face's chart extended across its edges (appendix B)
-    // that holds all three.
+    // that holds all three and is not cut between them; only when every
+    // such chart is cut (corners in all three faces around a domain vertex
+    // of valence 3, where no chart is faithful) the cut ones.
     Preimages tried;
-    for (const auto& candidates : reps)
-        for (const Preimage& chart : candidates) {
-            if (std::any_of(tried.begin(), tried.end(),
-                            [&](const Preimage& x) { return x.face == chart.face; }))
-                continue;
-            tried.push_back(chart);
-            if (cutBetweenNeighbours(reps, chart.face))
-                continue;
-            std::array<Vec2, 3> c;
-            bool all = true;
-            for (int i = 0; i < 3 && all; ++i) {
-                const std::optional<Vec2> x = inChart(reps[i], chart.face);
-                all = x.has_value();
-                if (all)
-                    c[i] = *x;
+    const auto extended = [&](bool cut) {
+        bool visited = false;
+        tried = Preimages{};
+        for (const auto& candidates : reps)
+            for (const Preimage& chart : candidates) {
+                if (std::any_of(tried.begin(), tried.end(),
+                                [&](const Preimage& x) { return x.face == chart.face; }))
+                    continue;
+                tried.push_back(chart);
+                if (cutBetweenNeighbours(reps, chart.face) != cut)
+                    continue;
+                std::array<Vec2, 3> c;
+                bool all = true;
+                for (int i = 0; i < 3 && all; ++i) {
+                    const std::optional<Vec2> x = inChart(reps[i], chart.face);
+                    all = x.has_value();
+                    if (all)
+                        c[i] = *x;
+                }
+                if (all) {
+                    visit(c);
+                    visited = true;
+                }
             }
-            if (all)
-                visit(c);
-        }
+        return visited;
+    };
+    if (!extended(false))
+        extended(true);
 }
 
 // The charts a mesh without setVertexRingCharts has: each pair in one face
@@ -326,12 +337,11 @@ bool DomainCharts::withinEdgeCharts(const std::array<Preimage, 3>& p) const {
     };
     if (!pairShares(reps[0], reps[1]) || !pairShares(reps[0], reps[2]))
         return false;
-    const std::array<PreimageSpan, 3> spans{span(reps[0]), span(reps[1]), span(reps[2])};
     for (const auto& candidates : reps)
         for (const Preimage& chart : candidates) {
-            bool all = !cutBetweenNeighbours(spans, chart.face);
+            bool all = true;
             for (int i = 0; i < 3 && all; ++i)
-                all = inEdgeChart(spans[static_cast<size_t>(i)], chart.face).has_value();
+                all = inEdgeChart(span(reps[i]), chart.face).has_value();
             if (all)
                 return true;
         }

@@ -100,7 +100,8 @@ public:
     // Whether the chart of `face` extended across its edges reaches the
     // preimages (their equivalents()) through two edge neighbours that are
     // neighbours of each other (a domain vertex of valence 3), where the
-    // chart is cut: forEachChart() skips such a chart.
+    // chart is cut: forEachChart() offers such a chart only when no other
+    // holds the three.
     bool cutBetweenNeighbours(const std::array<PreimageSpan, 3>& reps, Index face) const;
 
     // The three preimages' coordinates in every common chart: the domain
@@ -108,8 +109,7 @@ public:
     // their edges holds all three; empty when there is none.
     std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const;
     // Whether p[0] shares a face or edge-adjacent faces with p[1] and with
-    // p[2], and the three lie in one face's chart extended across its edges
-    // where it is not cut (cutBetweenNeighbours):
+    // p[2], and the three lie in one face's chart extended across its edges:
     // the charts without setVertexRingCharts. A move that must not straddle
     // a regular corner asks this (contour insertion's snap rule).
     bool withinEdgeCharts(const std::array<Preimage, 3>& p) const;
