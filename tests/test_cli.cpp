@@ -1154,10 +1154,6 @@ private slots:
             QTest::addRow("planned %s", planned.name.c_str())
                 << QStringList{"--mesh", s, "--method", QString::fromStdString(planned.name)} << 2
                 << QString::fromStdString(planned.reason);
-        QTest::newRow("traced curves are planned")
-            << QStringList{"--mesh", s, "--method", "traced"} << 2
-            << "--method traced (Traced curves (Summers 2016)): not implemented yet: the contour "
-               "generator traced on the limit surface";
         QTest::newRow("unknown option")
             << QStringList{"--mesh", s, "--frobnicate"} << 2 << "--frobnicate";
         QTest::newRow("bad --eye: two numbers")
