@@ -600,12 +600,15 @@ inline constexpr CounterName kRecoveredStalls{"recovered-stalls", "stalls recove
 inline constexpr CounterName kCollisions{"collisions", "curves reaching a used root"};
 inline constexpr CounterName kSingularPoints{"singular-points", "points where grad g vanishes"};
 inline constexpr CounterName kJoinedPieces{"joined-pieces", "open pieces joined"};
+inline constexpr CounterName kRootlessCrossings{"rootless-crossings",
+                                                "edges crossed without a root"};
 inline constexpr CounterName kUnreachedRoots{"unreached-roots", "edge roots no curve passed"};
 inline constexpr CounterName kInteriorSeedsOnCurves{"interior-seeds-on-curves",
                                                     "interior seeds on traced curves"};
 inline constexpr CounterName kInteriorSeedsLeavingFace{"interior-seeds-leaving-face",
                                                        "interior seeds whose curve left the face"};
 inline constexpr CounterName kMaxAbsG{"max-abs-g", "largest |g| on the curve (/ bbox diagonal)"};
+inline constexpr CounterName kCuspsAtJumps{"cusps-at-jumps", "cusps at a jump of kr"};
 inline constexpr CounterName kCuspSamples{"cusp-samples", "radial curvature samples"};
 
 } // namespace counters

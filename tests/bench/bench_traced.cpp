@@ -10,6 +10,7 @@
 #include "BenchSupport.h"
 #include "camera/Camera.h"
 #include "contours/Methods.h"
+#include "contours/traced/TracedState.h"
 #include "pipeline/CounterNames.h"
 #include "pipeline/Runner.h"
 #include "reference/DenseGroundTruth.h"
@@ -29,12 +30,16 @@ int main(int argc, char** argv) {
     std::string dir = std::string(CONTOUR_SHARED_DIR) + "/meshes";
     int samples = 64;
     bool ortho = false;
+    bool withGraph = false;
     std::vector<std::string> settings;
     app.add_option("--meshes", meshes, "Meshes of --dir (without extension), or shape:NAME[:RES]")
         ->delimiter(',');
     app.add_option("--dir", dir, "Folder of the meshes");
     app.add_option("--samples", samples, "Lattice steps per domain face of the ground truth");
     app.add_flag("--ortho", ortho, "Orthographic views (same directions)");
+    app.add_flag("--t-junctions", withGraph,
+                 "Also run the visibility phase and compare its T-junctions with the ground "
+                 "truth's image crossings");
     app.add_option("--set", settings, "PARAM=VALUE for the traced method");
     CLI11_PARSE(app, argc, argv);
 
@@ -57,7 +62,8 @@ int main(int argc, char** argv) {
         double worst = 0.0, total = 0.0;
         std::printf("%s (%s, %d ground-truth samples per face side)\n", name.c_str(),
                     ortho ? "orthographic" : "perspective", samples);
-        std::printf("view  seconds  loops open truth  cusps truth  settled  steps  max|g|/diag\n");
+        std::printf("view  seconds  loops open truth  cusps truth  settled  steps  max|g|/diag  "
+                    "closest cusps/diag  T-junctions truth\n");
         for (size_t v = 0; v < views.size(); ++v) {
             Camera camera = views[v];
             if (ortho) {
@@ -86,6 +92,18 @@ int main(int argc, char** argv) {
             const int cusps = static_cast<int>(s.counter(counters::kCusps));
             const bool sameLoops = loops == t.closedLoops() && open == t.openLoops();
             const bool sameCusps = cusps == static_cast<int>(t.cusps.size());
+            // The closest two cusps of one curve (a pair the lattice may not resolve).
+            double closestPair = -1.0;
+            if (const auto* state = dynamic_cast<const traced::TracedState*>(s.methodState.get()))
+                if (state->cusps)
+                    for (size_t i = 0; i < state->cusps->size(); ++i)
+                        for (size_t j = i + 1; j < state->cusps->size(); ++j) {
+                            const traced::TracedCusp& a = (*state->cusps)[i];
+                            const traced::TracedCusp& b = (*state->cusps)[j];
+                            const double d = (a.position - b.position).norm() / box.diagonal();
+                            if (a.curve == b.curve && (closestPair < 0.0 || d < closestPair))
+                                closestPair = d;
+                        }
             if (isSettled) {
                 ++settled;
                 loopsEqual += sameLoops;
@@ -95,10 +113,26 @@ int main(int argc, char** argv) {
             worst = std::max(worst, seconds);
             total += seconds;
             withinTarget += seconds <= 0.1;
-            std::printf("%4zu  %7.4f  %5d %4d %5d  %5d %5zu  %7s  %5.0f  %.2e%s\n", v, seconds,
-                        loops, open, t.closedLoops(), cusps, t.cusps.size(),
-                        isSettled ? "yes" : "no", s.counter(counters::kTracingSteps),
-                        s.counter(counters::kMaxAbsG), (sameLoops && sameCusps) ? "" : "  differs");
+            const double steps = s.counter(counters::kTracingSteps);
+            const double maxAbsG = s.counter(counters::kMaxAbsG);
+            // The view graph's T-junctions against the ground truth's image
+            // crossings (not timed).
+            int tJunctions = -1;
+            if (withGraph) {
+                while (runner.current().phaseName != "visibility" && runner.step()) {
+                }
+                if (runner.current().viewGraph) {
+                    tJunctions = 0;
+                    for (const ViewNode& n : runner.current().viewGraph->nodes)
+                        tJunctions += n.type == ViewNodeType::ImageIntersection;
+                }
+            }
+            const int crossings = imageCrossings(t, camera);
+            std::printf(
+                "%4zu  %7.4f  %5d %4d %5d  %5d %5zu  %7s  %5.0f  %.2e     %.1e  %3d %3d%s\n", v,
+                seconds, loops, open, t.closedLoops(), cusps, t.cusps.size(),
+                isSettled ? "yes" : "no", steps, maxAbsG, closestPair, tJunctions, crossings,
+                (sameLoops && sameCusps) ? "" : "  differs");
         }
         std::printf("%s: mean %.4f s, worst %.4f s, %d/26 views within 0.1 s; %d settled views: "
                     "loops equal on %d, cusps on %d, both on %d\n",

@@ -24,6 +24,8 @@ const char* toString(CurveEnd end) {
         return "collision";
     case CurveEnd::TooLong:
         return "too-long";
+    case CurveEnd::AlongEdge:
+        return "along-edge";
     }
     return "unknown";
 }
@@ -37,11 +39,17 @@ struct StepPoint {
     ContourSample sample;
 };
 
-enum class FaceEnd { Exit, Closed, LeftFace, Stalled, Singular, TooLong };
+enum class FaceEnd { Exit, Crossed, Closed, LeftFace, Stalled, Singular, TooLong };
 
 struct FaceTrace {
     FaceEnd end = FaceEnd::Stalled;
     Index exitRoot = kInvalidIndex;
+    // Crossed: the curve left through `crossingEdge` where the edge has no
+    // root (a contour tangent to the edge, or running along it, within the
+    // tolerance): the next point, just across, in this face's chart.
+    int crossingEdge = -1;
+    StepPoint crossing;
+    Vec2 crossingBoundary = Vec2::Zero(); // where the chord to it crosses the edge
     std::vector<StepPoint> points; // accepted points after the start, without the exit root
 };
 
@@ -111,11 +119,17 @@ public:
                              deviation(face, x.uv, y.uv) > options_.maxDeviation;
                 }
             }
-            if (leaving) {
-                if (interior) {
+            if (leaving && interior) {
+                // A long step can cut across the face's edge next to a small
+                // loop: the curve leaves only if a short step does too.
+                if (h <= 4.0 * options_.maxDeviation) {
                     out.end = FaceEnd::LeftFace;
                     return out;
                 }
+                leaving = false;
+                reject = true;
+            }
+            if (leaving) {
                 const FaceExit exit = segmentExit(quad, x.uv, leaveTo);
                 const Vec2 boundary = x.uv + exit.s * (leaveTo - x.uv);
                 Index best = kInvalidIndex;
@@ -138,6 +152,23 @@ public:
                     out.end = FaceEnd::Exit;
                     out.exitRoot = best;
                     return out;
+                }
+                // No root where a short step leaves: the contour touches the
+                // edge or runs along it (a view not in general position), so
+                // the step crosses into the neighbour without a root.
+                if (h <= 4.0 * options_.maxDeviation &&
+                    surface_.neighbor(face, exit.edge).face != kInvalidIndex) {
+                    const CorrectedPoint c =
+                        correctOntoContour(surface_, camera_, face, predicted, corrector_);
+                    if (c.converged && (c.uv - predicted).norm() <= 0.5 * h) {
+                        const FaceExit across = segmentExit(quad, x.uv, c.uv);
+                        out.end = FaceEnd::Crossed;
+                        out.crossingEdge = across.edge >= 0 ? across.edge : exit.edge;
+                        out.crossing = {c.uv, c.sample};
+                        out.crossingBoundary =
+                            across.edge >= 0 ? Vec2(x.uv + across.s * (c.uv - x.uv)) : boundary;
+                        return out;
+                    }
                 }
                 reject = true;
             }
@@ -259,13 +290,38 @@ std::vector<TracedCurve> traceContours(const SmoothSurface& surface, const Camer
         tracer.startCurve();
         TracedCurve c;
         addRootPoint(c, first, static_cast<Index>(r0));
-        Index current = static_cast<Index>(r0);
+        // Where the curve goes on: a face and a point of it on the curve.
+        Index face = first.entrySide.face;
+        int rootless = 0;
+        Vec2 at(first.entrySide.u, first.entrySide.v);
         for (;;) {
-            const EdgeRoot& root = seeds.roots[static_cast<size_t>(current)];
-            const Index face = root.entrySide.face;
-            const StepPoint start = tracer.sampleAt(face, Vec2(root.entrySide.u, root.entrySide.v));
+            const StepPoint start = tracer.sampleAt(face, at);
             const FaceTrace trace = tracer.traceFace(face, start, false);
             const Vec2 last = appendFaceTrace(c, face, start.uv, trace);
+            if (trace.end == FaceEnd::Crossed) {
+                // The point ahead, in the neighbour's chart (evaluating it
+                // in this one would clamp it to the face), back onto g = 0.
+                const Preimage across = surface.transferAcrossEdge(
+                    {face, trace.crossing.uv.x(), trace.crossing.uv.y()}, trace.crossingEdge);
+                CorrectorOptions corrector;
+                corrector.gTolerance = options.gTolerance;
+                const CorrectedPoint there = correctOntoContour(
+                    surface, camera, across.face, Vec2(across.u, across.v), corrector);
+                if (!there.converged) {
+                    c.end = CurveEnd::Stalled;
+                    break;
+                }
+                if (++rootless > options.maxRootlessCrossings) {
+                    c.end = CurveEnd::AlongEdge;
+                    break;
+                }
+                c.segments.push_back({face, last, trace.crossingBoundary});
+                face = across.face;
+                at = there.uv;
+                addPoint(c, face, {there.uv, there.sample});
+                ++stats.rootlessCrossings;
+                continue;
+            }
             if (trace.end != FaceEnd::Exit) {
                 c.end = curveEnd(trace.end);
                 break;
@@ -303,7 +359,8 @@ std::vector<TracedCurve> traceContours(const SmoothSurface& surface, const Camer
                 c.end = CurveEnd::Boundary;
                 break;
             }
-            current = next;
+            face = exit.entrySide.face;
+            at = Vec2(exit.entrySide.u, exit.entrySide.v);
         }
         if (!c.closed)
             openCurveStartingAt[r0] = static_cast<long long>(curves.size());

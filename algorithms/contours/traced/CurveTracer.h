@@ -47,6 +47,7 @@ enum class CurveEnd {
     Singular,  // ∇g vanished on the curve (the zero set is not a curve there)
     Collision, // reached a root another curve had used
     TooLong,   // max-steps reached
+    AlongEdge, // crossed edges without roots too often: the contour runs along an edge
 };
 const char* toString(CurveEnd end);
 
@@ -66,6 +67,7 @@ struct TracerOptions {
     double gTolerance = 0.0;       // |g| of an accepted point (length units)
     double singularGradient = 0.0; // |∇g| below this is a singular point
     int maxSteps = 200000;         // per curve
+    int maxRootlessCrossings = 64; // per curve, before it counts as running along an edge
 };
 
 struct TracerStats {
@@ -73,6 +75,7 @@ struct TracerStats {
     long long stalls = 0, recoveredStalls = 0;
     long long collisions = 0, singularPoints = 0;
     long long joinedPieces = 0;          // open pieces joined end to start
+    long long rootlessCrossings = 0;     // edges crossed where they have no root (tangent contact)
     long long unreachedRoots = 0;        // edge roots no curve passed
     long long interiorSeedsOnCurves = 0; // interior seeds already on a traced curve
     long long interiorSeedsLeavingFace = 0;

@@ -40,18 +40,31 @@ EdgeRoots polynomialRoots(const EdgePolynomial& poly, const Camera& camera,
                                           std::abs(poly.positionDotNormal[k]));
     o.zeroTolerance = 1e-13 * terms;
     o.maxDepth = options.maxDepth;
+    // The coefficients bound g (times |N|) on the edge: below the tolerance
+    // everywhere, the contour runs along the edge (Summers 2016 §3.4.2.2:
+    // infinitely many roots).
+    const double normal = std::min(poly.normal.front().norm(), poly.normal.back().norm());
+    if (scale <= options.gTolerance * normal)
+        return {{}, true, 0, true};
     const BernsteinRoots found = isolateRoots(g, o);
     return {found.roots, true, found.unresolved, found.vanishes};
 }
 
 EdgeRoots sampledRoots(const SmoothSurface& surface, const DomainEdge& e,
-                       const EdgePolynomial& poly, const Camera& camera) {
+                       const EdgePolynomial& poly, const Camera& camera, double gTolerance) {
     EdgeRoots out;
     out.certified = false;
     const size_t n = poly.samplePositions.size();
     std::vector<double> g(n);
-    for (size_t j = 0; j < n; ++j)
+    bool vanishes = true;
+    for (size_t j = 0; j < n; ++j) {
         g[j] = camera.toCamera(poly.samplePositions[j]).dot(poly.sampleNormals[j]);
+        vanishes = vanishes && std::abs(g[j]) <= gTolerance * poly.sampleNormals[j].norm();
+    }
+    if (vanishes) {
+        out.vanishes = true;
+        return out;
+    }
     const bool quad = surface.isQuad(e.face);
     const auto gAt = [&](double t) {
         const Vec2 uv = pointOnEdge(quad, e.edge, t);
@@ -82,7 +95,8 @@ EdgeSeeds findEdgeSeeds(const SmoothSurface& surface, const EdgePolynomials& pol
     tbb::parallel_for(size_t(0), edgeCount, [&](size_t i) {
         const EdgePolynomial& poly = polynomials.polynomials[i];
         perEdge[i] = poly.polynomial ? polynomialRoots(poly, camera, options)
-                                     : sampledRoots(surface, polynomials.edges[i], poly, camera);
+                                     : sampledRoots(surface, polynomials.edges[i], poly, camera,
+                                                    options.gTolerance);
     });
     EdgeSeeds seeds;
     struct Pending {

@@ -12,6 +12,7 @@
 #include "contours/traced/EdgeSeeds.h"
 #include "contours/traced/InteriorSeeds.h"
 #include "contours/traced/TracedCusps.h"
+#include "contours/traced/TracedState.h"
 #include "pipeline/FieldNames.h"
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceTessellation.h"
@@ -30,17 +31,6 @@ namespace {
 using namespace traced;
 
 constexpr const char* kToleranceGroup = "tolerances";
-
-// What the phases hand on: every step can be rebuilt from the parameters
-// and the surface (ensureState).
-struct TracedState final : MethodState {
-    std::shared_ptr<const SmoothSurface> surface;
-    std::shared_ptr<const EdgePolynomials> polynomials;
-    std::shared_ptr<const EdgeSeeds> edgeSeeds;
-    std::shared_ptr<const InteriorSeeds> interiorSeeds;
-    std::shared_ptr<const std::vector<TracedCurve>> curves;
-    std::shared_ptr<const std::vector<TracedCusp>> cusps;
-};
 
 std::shared_ptr<const SmoothSurface> surfaceOf(const PhaseContext& ctx, const Snapshot& s) {
     const std::optional<SurfaceKind> kind = selectedSurfaceKind(ctx.parameters, *s.cage);
@@ -111,6 +101,7 @@ std::shared_ptr<TracedState> ensureState(const PhaseContext& ctx, const Snapshot
         CuspOptions o;
         o.samplesPerSegment = ctx.parameters.getInt("cusp-samples");
         o.gTolerance = gTolerance(ctx, s);
+        o.jumpCurvature = 1e-4 / diagonal(s);
         state->cusps = std::make_shared<const std::vector<TracedCusp>>(
             findTracedCusps(surface, ctx.camera, *state->curves, o));
     }
@@ -243,6 +234,12 @@ void runTracing(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kSingularPoints, static_cast<double>(stats.singularPoints));
     s.setCounter(counters::kJoinedPieces, static_cast<double>(stats.joinedPieces));
     s.setCounter(counters::kUnreachedRoots, static_cast<double>(stats.unreachedRoots));
+    s.setCounter(counters::kRootlessCrossings, static_cast<double>(stats.rootlessCrossings));
+    if (stats.rootlessCrossings > 0)
+        s.notes.push_back(std::to_string(stats.rootlessCrossings) +
+                          " times a curve crossed a domain edge where the edge has no root of g: "
+                          "the contour touches the edge or runs along it (a view not in general "
+                          "position); the tracer crossed without a seed there");
     s.setCounter(counters::kInteriorSeedsOnCurves,
                  static_cast<double>(stats.interiorSeedsOnCurves));
     s.setCounter(counters::kInteriorSeedsLeavingFace,
@@ -288,10 +285,19 @@ void runCusps(const PhaseContext& ctx, Snapshot& s) {
     CuspOptions o;
     o.samplesPerSegment = ctx.parameters.getInt("cusp-samples");
     o.gTolerance = gTolerance(ctx, s);
+    o.jumpCurvature = 1e-4 / diagonal(s);
     long long samples = 0;
     state->cusps = std::make_shared<const std::vector<TracedCusp>>(
         findTracedCusps(*state->surface, ctx.camera, *state->curves, o, &samples));
+    long long jumps = 0;
+    for (const TracedCusp& c : *state->cusps)
+        jumps += c.jump;
     s.setCounter(counters::kCusps, static_cast<double>(state->cusps->size()));
+    s.setCounter(counters::kCuspsAtJumps, static_cast<double>(jumps));
+    if (jumps > 0)
+        s.notes.push_back(std::to_string(jumps) +
+                          " cusps are jumps of the radial curvature over 0 where the evaluator's "
+                          "patches meet next to extraordinary vertices (end caps), not roots");
     s.setCounter(counters::kCuspSamples, static_cast<double>(samples));
     s.methodState = state;
 }
@@ -406,7 +412,7 @@ Method makeTracedContourMethod() {
         "cusp-samples", "Curvature samples per segment",
         "Radial curvature samples per traced segment (points pulled onto g = 0) whose sign "
         "changes are bisected into cusps. Not in the paper.",
-        ParameterType::Int, 4, 1, 64));
+        ParameterType::Int, 16, 1, 64));
     m.addPhase({"cusps",
                 "Cusps where the radial curvature changes sign along the traced curves, "
                 "bisected on the curve.",

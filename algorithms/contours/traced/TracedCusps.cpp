@@ -72,15 +72,23 @@ std::vector<TracedCusp> findTracedCusps(const SmoothSurface& surface, const Came
             double hi = b.segment == a.segment && b.fraction > a.fraction ? b.fraction : 1.0;
             const bool loPositive = a.kr > 0.0;
             OnCurve at = pointOnSegment(surface, camera, segment, 0.5 * (lo + hi), corrector);
+            double krLo = a.kr, krHi = b.kr;
             for (int i = 0; i < options.bisections; ++i) {
                 const double mid = 0.5 * (lo + hi);
                 at = pointOnSegment(surface, camera, segment, mid, corrector);
                 const double kr = radialCurvature(at.point, camera);
                 if (!std::isfinite(kr))
                     break;
-                ((kr > 0.0) == loPositive ? lo : hi) = mid;
+                if ((kr > 0.0) == loPositive) {
+                    lo = mid;
+                    krLo = kr;
+                } else {
+                    hi = mid;
+                    krHi = kr;
+                }
             }
-            found[ci].push_back({at.preimage, at.point.position, static_cast<int>(ci)});
+            const bool jump = std::min(std::abs(krLo), std::abs(krHi)) > options.jumpCurvature;
+            found[ci].push_back({at.preimage, at.point.position, static_cast<int>(ci), jump});
         }
     });
     std::vector<TracedCusp> cusps;

@@ -18,13 +18,20 @@ struct TracedCusp {
     Preimage preimage;
     Vec3 position = Vec3::Zero();
     int curve = -1;
+    // kr jumps over 0 here instead of passing through it: the evaluator's
+    // patches meet with different second derivatives (the Gregory end caps
+    // next to extraordinary vertices, SubdivisionSurface.h). Still a sign
+    // change, so still counted.
+    bool jump = false;
 };
 
 struct CuspOptions {
-    int samplesPerSegment = 4; // kr samples per segment (its start and samplesPerSegment - 1
-                               // points between)
+    int samplesPerSegment = 16; // kr samples per segment (its start and samplesPerSegment - 1
+                                // points between)
     int bisections = 30;
     double gTolerance = 0.0;
+    // |kr| above this on both sides of the final bracket marks a jump.
+    double jumpCurvature = 0.0;
 };
 
 std::vector<TracedCusp> findTracedCusps(const SmoothSurface& surface, const Camera& camera,
