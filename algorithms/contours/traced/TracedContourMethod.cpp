@@ -61,8 +61,9 @@ TracerOptions tracerOptions(const PhaseContext& ctx, const Snapshot& s) {
     o.maxDeviation = ctx.parameters.getDouble("max-deviation");
     o.maxTurn = ctx.parameters.getDouble("max-turn");
     o.gTolerance = gTolerance(ctx, s);
-    // grad g is a length per unit of parameter: this is a vanishing one.
-    o.singularGradient = 1e-9 * diagonal(s);
+    // grad g is a length per unit of parameter (about the diagonal): far below
+    // it two branches of g = 0 touch or cross (Summers 2016 Fig. 13).
+    o.singularGradient = 1e-5 * diagonal(s);
     return o;
 }
 
