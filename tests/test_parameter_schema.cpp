@@ -26,9 +26,10 @@ namespace {
 
 const char* const kProgram = CONTOUR_BINARY_DIR "/app/batch/contour-batch";
 
-// Groups that are not a phase: parameters every phase reads, and the cusp
-// retry, which reruns phases instead of being one.
-const std::set<std::string> kMethodWideGroups = {"surface", "cusp-retry"};
+// Groups that are not a phase: parameters every phase reads (the surface,
+// the traced method's tolerances), and the cusp retry, which reruns phases
+// instead of being one.
+const std::set<std::string> kMethodWideGroups = {"surface", "tolerances", "cusp-retry"};
 
 constexpr size_t kMaxHelp = 300;
 

@@ -5,7 +5,7 @@ namespace contour {
 const std::vector<Method>& contourMethods() {
     static const std::vector<Method> methods{
         makeMeshContourMethod(), makeInterpolatedContourMethod(), makeConsistentContourMethod(),
-        makePowellSabinMethod()};
+        makePowellSabinMethod(), makeTracedContourMethod()};
     return methods;
 }
 
@@ -17,12 +17,7 @@ const Method* findMethod(const std::string& name) {
 }
 
 const std::vector<PlannedMethod>& plannedMethods() {
-    static const std::vector<PlannedMethod> planned{
-        // Summers 2016 traces the contour generator on the limit surface itself
-        // instead of extracting it from a tessellation.
-        {"traced", "Traced curves (Summers 2016)",
-         "not implemented yet: the contour generator traced on the limit surface"},
-    };
+    static const std::vector<PlannedMethod> planned{};
     return planned;
 }
 

@@ -10,7 +10,8 @@ namespace contour {
 
 // Methods that run today: "mesh", "interpolated", "consistent" (every
 // sub-phase of Bénard 2014 §6; some inconsistent faces remain, see its
-// description) and "powell-sabin" (the fitted spline, without contours yet).
+// description), "powell-sabin" (the fitted spline) and "traced" (the contour
+// traced on the limit surface, Summers 2016).
 const std::vector<Method>& contourMethods();
 const Method* findMethod(const std::string& name);
 
@@ -30,5 +31,8 @@ Method makeConsistentContourMethod();
 // The fitted Powell-Sabin spline (Capouellez et al. 2023 §5) and its contour
 // conics, chains and cusps (§4); its visibility is not computed yet.
 Method makePowellSabinMethod();
+// The contour generator traced on the Catmull-Clark or Loop limit surface
+// (Summers 2016), with cusps and the common view graph.
+Method makeTracedContourMethod();
 
 } // namespace contour

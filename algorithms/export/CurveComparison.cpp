@@ -1,5 +1,6 @@
 #include "export/CurveComparison.h"
 
+#include "core/SegmentDistance.h"
 #include "export/ProjectedCurves.h"
 
 #include <algorithm>
@@ -33,13 +34,6 @@ double length(const ImagePolyline& line) {
     for (std::size_t i = 1; i < line.size(); ++i)
         total += (line[i] - line[i - 1]).norm();
     return total;
-}
-
-double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
-    const Vec2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (p - (a + t * ab)).norm();
 }
 
 // Hand-written: a uniform grid over the segments of one side, each segment

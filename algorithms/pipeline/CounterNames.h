@@ -574,5 +574,44 @@ inline constexpr CounterName kRuleCheckSeconds{"rule-check-seconds",
 inline constexpr CounterName kFitRmsDistance{
     "fit-rms-distance", "RMS distance to the input vertices (/ bbox diagonal)"};
 
+// Traced contours (contours/traced, Summers 2016).
+inline constexpr CounterName kTracedSeeds{"seeds", "seeds (edge roots and interior seeds)"};
+inline constexpr CounterName kEdgeRoots{"edge-roots", "edge roots of g"};
+inline constexpr CounterName kCertifiedEdges{"certified-edges",
+                                             "edges isolated by Descartes' rule"};
+inline constexpr CounterName kSampledEdges{"sampled-edges", "edges sampled (not one polynomial)"};
+inline constexpr CounterName kUnresolvedRootClusters{"unresolved-root-clusters",
+                                                     "root clusters not isolated"};
+inline constexpr CounterName kVanishingEdges{"vanishing-edges", "edges where g vanishes"};
+inline constexpr CounterName kTangentRoots{"tangent-roots", "roots tangent to their edge"};
+inline constexpr CounterName kEdgeSetupSeconds{"edge-setup-seconds",
+                                               "edge polynomial setup seconds"};
+inline constexpr CounterName kCriticalPointCandidates{"critical-point-candidates",
+                                                      "lattice extrema of g"};
+inline constexpr CounterName kCriticalPoints{"critical-points", "critical points of g"};
+inline constexpr CounterName kCriticalExtrema{"critical-extrema", "extrema of g"};
+inline constexpr CounterName kCriticalSaddles{"critical-saddles", "saddles of g"};
+inline constexpr CounterName kInteriorSeeds{"interior-seeds", "interior seeds"};
+inline constexpr CounterName kLoops{"loops", "closed loops traced"};
+inline constexpr CounterName kOpenCurves{"open-curves", "curves left open"};
+inline constexpr CounterName kInteriorLoops{"interior-loops", "loops inside one face"};
+inline constexpr CounterName kTracingSteps{"steps", "tracing steps"};
+inline constexpr CounterName kRejectedSteps{"rejected-steps", "rejected tracing steps"};
+inline constexpr CounterName kStalls{"stalls", "steps below the minimum"};
+inline constexpr CounterName kRecoveredStalls{"recovered-stalls", "stalls recovered"};
+inline constexpr CounterName kCollisions{"collisions", "curves reaching a used root"};
+inline constexpr CounterName kSingularPoints{"singular-points", "points where grad g vanishes"};
+inline constexpr CounterName kJoinedPieces{"joined-pieces", "open pieces joined"};
+inline constexpr CounterName kRootlessCrossings{"rootless-crossings",
+                                                "edges crossed without a root"};
+inline constexpr CounterName kUnreachedRoots{"unreached-roots", "edge roots no curve passed"};
+inline constexpr CounterName kInteriorSeedsOnCurves{"interior-seeds-on-curves",
+                                                    "interior seeds on traced curves"};
+inline constexpr CounterName kInteriorSeedsLeavingFace{"interior-seeds-leaving-face",
+                                                       "interior seeds whose curve left the face"};
+inline constexpr CounterName kMaxAbsG{"max-abs-g", "largest |g| on the curve (/ bbox diagonal)"};
+inline constexpr CounterName kCuspsAtJumps{"cusps-at-jumps", "cusps at a jump of kr"};
+inline constexpr CounterName kCuspSamples{"cusp-samples", "radial curvature samples"};
+
 } // namespace counters
 } // namespace contour

@@ -29,6 +29,11 @@ struct Polyline {
     // element it comes from, an edge or a face according to `source`.
     SegmentSource source = SegmentSource::MeshEdge;
     std::vector<Index> segmentElement;
+    // The points lie on a smooth surface, not on the working mesh's edges
+    // (traced contours, Summers 2016): segmentElement names the face each
+    // segment lies over, and two segments meet on the surface only where
+    // they are consecutive on one curve, not where their faces touch.
+    bool offMesh = false;
 
     size_t segmentCount() const {
         return points.size() < 2 ? 0 : closed ? points.size() : points.size() - 1;

@@ -561,6 +561,16 @@ private:
             faces.push_back((*secondFaces_)[r.curve][r.segment]);
         return faces;
     }
+    // Segments of curves off the mesh meet where they share a point: only
+    // neighbours along one curve (the last and first of a closed one).
+    bool consecutiveOnCurve(const Ref& a, const Ref& b) const {
+        if (a.curve != b.curve)
+            return false;
+        const Index n = segmentCount(a.curve);
+        const Index d = std::abs(a.segment - b.segment);
+        return d <= 1 || (curves_[a.curve].closed && d == n - 1);
+    }
+
     // App. C.1: two segments that meet on the surface, found by pointers
     // rather than in the image. Mesh-edge and interpolated segments meet
     // when they share a mesh vertex. A surface-intersection segment lies
@@ -568,6 +578,9 @@ private:
     // surface-intersection ends) and the segments inside them; a curve
     // through one of their corners can still pass in front of it.
     bool logicallyMeet(const Ref& a, const Ref& b) const {
+        if (a.curve != kInvalidIndex && b.curve != kInvalidIndex &&
+            (curves_[a.curve].offMesh || curves_[b.curve].offMesh))
+            return consecutiveOnCurve(a, b);
         const std::vector<Index> fa = intersectionFaces(a), fb = intersectionFaces(b);
         if (fa.empty() && fb.empty()) {
             const std::vector<Index> v0 = refVertices(a), v1 = refVertices(b);
