@@ -64,6 +64,12 @@ struct GroundTruth {
 
     int closedLoops() const;
     int openLoops() const { return static_cast<int>(loops.size()) - closedLoops(); }
+    // Whether `other` (the same view at another lattice) has the same loops
+    // and cusps: a view where the two agree is settled and can judge a method.
+    bool sameTopology(const GroundTruth& other) const {
+        return closedLoops() == other.closedLoops() && openLoops() == other.openLoops() &&
+               cusps.size() == other.cusps.size();
+    }
 };
 
 // The image-space crossings of the ground truth's contour (all loops, visible

@@ -84,9 +84,7 @@ int main(int argc, char** argv) {
             const Snapshot& s = runner.current();
             const GroundTruth t = truth.compute(camera);
             const GroundTruth h = half.compute(camera);
-            const bool isSettled = t.closedLoops() == h.closedLoops() &&
-                                   t.openLoops() == h.openLoops() &&
-                                   t.cusps.size() == h.cusps.size();
+            const bool isSettled = t.sameTopology(h);
             const int loops = static_cast<int>(s.counter(counters::kLoops));
             const int open = static_cast<int>(s.counter(counters::kOpenCurves));
             const int cusps = static_cast<int>(s.counter(counters::kCusps));
