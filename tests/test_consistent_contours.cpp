@@ -243,9 +243,12 @@ private slots:
     // three domain faces around such a vertex looked folded in parameter
     // space from contour insertion on (8 violations over the phases). On
     // view 3 a face has a corner in each of the three faces around such a
-    // vertex: every chart of it is cut, and it must still have one.
+    // vertex: every chart of it is cut, and it must still have one. On
+    // view 16 the root of an FB edge next to such a vertex, bisected in one
+    // chart, made a face folded in the chart it is read in; contour
+    // insertion takes the root in another common chart instead.
     void noFoldReadInACutChart() {
-        for (const size_t view : {3, 6})
+        for (const size_t view : {3, 6, 16})
             if (!postConditionsHoldOnView("ogre_controlmesh", view))
                 QSKIP("../shared/meshes/ogre_controlmesh.obj is absent");
     }

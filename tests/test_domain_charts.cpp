@@ -68,6 +68,14 @@ std::vector<Index> facesAround(Index w) {
     return out;
 }
 
+// The first domain vertex of valence 3 (a corner of the cube).
+Index valenceThreeVertex() {
+    for (Index x = 0; x < cubeSurface()->domain().vertexCount(); ++x)
+        if (facesAround(x).size() == 3)
+            return x;
+    return kInvalidIndex;
+}
+
 // Local corner index of domain vertex w in face f, or -1.
 int cornerOf(Index f, Index w) {
     const auto corners = cubeSurface()->domain().face(f);
@@ -308,11 +316,7 @@ private slots:
     // offered must agree on the triangle's orientation (the two faces' own
     // charts do), and a point on the cut edge is held once.
     void chartCutAtAValenceThreeCorner() {
-        const PolygonMesh& domain = cubeSurface()->domain();
-        Index w = kInvalidIndex;
-        for (Index x = 0; x < domain.vertexCount() && w == kInvalidIndex; ++x)
-            if (facesAround(x).size() == 3)
-                w = x;
+        const Index w = valenceThreeVertex();
         QVERIFY(w != kInvalidIndex);
         const std::vector<Index> around = facesAround(w);
         const DomainCharts c = charts();
@@ -363,6 +367,46 @@ private slots:
         for (const auto& x : c.chartCoordinates(t))
             QCOMPARE(orientation2d(x[0], x[1], x[2]), *c.parameterOrientation(t));
         QVERIFY(c.parameterOrientation(t).has_value());
+    }
+
+    // Around a domain vertex of valence 3 two preimages can have several
+    // common charts that disagree on where the straight segment between
+    // them runs: from a point near the vertex in one face to the far end of
+    // the other two faces' shared edge, the segment runs through the second
+    // face in its chart and through the third in the third's. Contour
+    // insertion bisects in another chart when its split would fold
+    // (interpolateInChart); chart 0 is interpolateIn's.
+    void segmentChartsDisagreeAtAValenceThreeCorner() {
+        const Index w = valenceThreeVertex();
+        QVERIFY(w != kInvalidIndex);
+        const std::vector<Index> around = facesAround(w);
+        const Index n1 = around[0], n2 = around[1], n3 = around[2];
+        int far = -1;
+        for (int e = 0; e < 4; ++e)
+            if (cubeSurface()->neighbor(n2, e).face == n3)
+                far = e == cornerOf(n2, w) ? (e + 1) % 4 : e;
+        QVERIFY(far >= 0);
+        const DomainCharts c = charts();
+        const Preimage x = nearCorner(n1, cornerOf(n1, w)), y = atCorner(n2, far);
+        const int count = c.interpolationCharts(x, y);
+        QCOMPARE(count, 2);
+        const DomainCharts::Preimages rx = c.equivalents(x), ry = c.equivalents(y);
+        const auto rs = DomainCharts::span(rx), ys = DomainCharts::span(ry);
+        for (const double t : {0.1, 0.5, 0.9}) {
+            const std::optional<Preimage> first = c.interpolateInChart(rs, ys, t, 0);
+            const std::optional<Preimage> second = c.interpolateInChart(rs, ys, t, 1);
+            QVERIFY(first && second);
+            QVERIFY2(near(*first, *c.interpolateIn(rs, ys, t)), qPrintable(describe(first)));
+            QVERIFY(!c.interpolateInChart(rs, ys, t, count));
+            // The two straight segments: through different faces away from
+            // the ends.
+            if (t == 0.5) {
+                QVERIFY2(first->face != second->face,
+                         qPrintable(describe(first) + " " + describe(second)));
+                QVERIFY((position(*first) - position(*second)).norm() > 1e-3);
+            }
+            QVERIFY(near(*c.segmentInChart(x, y, 1).at(t), *second));
+        }
     }
 
     // Two faces sharing only a regular corner: no edge chart joins them

@@ -114,6 +114,11 @@ inline constexpr CounterName kInsertedCuspVertices{"inserted-cusp-vertices",
                                                    "inserted cusp vertices"};
 inline constexpr CounterName kSnappedVertices{"snapped-vertices", "snapped vertices"};
 inline constexpr CounterName kCancelledInsertions{"cancelled-insertions", "cancelled insertions"};
+inline constexpr CounterName kSnapsAgainstFolds{"snaps-against-folds",
+                                                "snaps instead of a folding split"};
+inline constexpr CounterName kRootsInAnotherChart{"roots-in-another-chart",
+                                                  "roots found in another chart"};
+inline constexpr CounterName kFoldingSplits{"folding-splits", "folding splits kept"};
 inline constexpr CounterName kUnconvergedRoots{"unconverged-roots", "unconverged roots"};
 
 // Consistent contours: radial edge insertion (§6.3 g)

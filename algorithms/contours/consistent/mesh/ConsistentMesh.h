@@ -111,6 +111,12 @@ public:
     }
     using Segment = DomainCharts::Segment;
     Segment segment(const Preimage& a, const Preimage& b) const { return charts_.segment(a, b); }
+    Segment segmentInChart(const Preimage& a, const Preimage& b, int chart) const {
+        return charts_.segmentInChart(a, b, chart);
+    }
+    int interpolationCharts(const Preimage& a, const Preimage& b) const {
+        return charts_.interpolationCharts(a, b);
+    }
     // Per face, the domain face holding its centroid: u(1/3) from the
     // midpoint of corners 0-1 to corner 2 (interpolate() twice),
     // kInvalidIndex without a common chart. Every face at once.

@@ -200,14 +200,61 @@ void DomainCharts::interpolate(const Preimage& a, const Preimage& b, std::span<c
 
 std::optional<Preimage> DomainCharts::interpolateIn(PreimageSpan ra, PreimageSpan rb,
                                                     double t) const {
+    std::optional<Preimage> out;
+    forEachInterpolation(ra, rb, t, [&](int, const std::optional<Preimage>& p) {
+        out = p;
+        return p.has_value();
+    });
+    return out; // nullopt: no common chart, the caller cancels (appendix B)
+}
+
+std::optional<Preimage> DomainCharts::interpolateInChart(PreimageSpan ra, PreimageSpan rb, double t,
+                                                         int chart) const {
+    std::optional<Preimage> out;
+    forEachInterpolation(ra, rb, t, [&](int k, const std::optional<Preimage>& p) {
+        if (k != chart)
+            return false;
+        out = p;
+        return true;
+    });
+    return out;
+}
+
+int DomainCharts::interpolationCharts(const Preimage& a, const Preimage& b) const {
+    const Preimages ra = equivalents(a), rb = equivalents(b);
+    int count = 0;
+    forEachInterpolation(span(ra), span(rb), 0.5, [&](int, const std::optional<Preimage>&) {
+        ++count;
+        return false;
+    });
+    return count;
+}
+
+template <typename Visit>
+void DomainCharts::forEachInterpolation(PreimageSpan ra, PreimageSpan rb, double t,
+                                        Visit visit) const {
+    int k = 0;
     // Both preimages in one face: plain interpolation.
     for (const Preimage& x : ra)
         for (const Preimage& y : rb)
-            if (x.face == y.face)
-                return clampIntoFace(
-                    {x.face, (1.0 - t) * x.u + t * y.u, (1.0 - t) * x.v + t * y.v});
+            if (x.face == y.face && visit(k++, clampIntoFace({x.face, (1.0 - t) * x.u + t * y.u,
+                                                              (1.0 - t) * x.v + t * y.v})))
+                return;
     // Edge-adjacent faces: express y in x's chart, interpolate there and map
     // the result into a face that contains it.
+    const auto located = [&](const Preimage& m, Index other) -> std::optional<Preimage> {
+        if (insideWithTolerance(m))
+            return clampIntoFace(m);
+        for (int back = 0; back < cornerCount(m.face); ++back) {
+            const Index nb = surface_->neighbor(m.face, back).face;
+            if (nb == kInvalidIndex || (other != kInvalidIndex && nb != other))
+                continue;
+            const Preimage my = surface_->transferAcrossEdge(m, back);
+            if (insideWithTolerance(my))
+                return clampIntoFace(my);
+        }
+        return std::nullopt;
+    };
     for (const Preimage& x : ra)
         for (const Preimage& y : rb)
             for (int e = 0; e < cornerCount(y.face); ++e) {
@@ -215,15 +262,8 @@ std::optional<Preimage> DomainCharts::interpolateIn(PreimageSpan ra, PreimageSpa
                     continue;
                 const Preimage yx = surface_->transferAcrossEdge(y, e);
                 const Preimage m{x.face, (1.0 - t) * x.u + t * yx.u, (1.0 - t) * x.v + t * yx.v};
-                if (insideWithTolerance(m))
-                    return clampIntoFace(m);
-                for (int back = 0; back < cornerCount(x.face); ++back) {
-                    if (surface_->neighbor(x.face, back).face != y.face)
-                        continue;
-                    const Preimage my = surface_->transferAcrossEdge(m, back);
-                    if (insideWithTolerance(my))
-                        return clampIntoFace(my);
-                }
+                if (visit(k++, located(m, y.face)))
+                    return;
             }
     // Faces sharing a regular corner (setVertexRingCharts): the same in the
     // chart of that corner's one-ring.
@@ -233,20 +273,14 @@ std::optional<Preimage> DomainCharts::interpolateIn(PreimageSpan ra, PreimageSpa
             if (!yx)
                 continue;
             const Preimage m{x.face, (1.0 - t) * x.u + t * yx->u, (1.0 - t) * x.v + t * yx->v};
-            if (insideWithTolerance(m))
-                return clampIntoFace(m);
-            for (int back = 0; back < cornerCount(x.face); ++back) {
-                if (surface_->neighbor(x.face, back).face == kInvalidIndex)
-                    continue;
-                const Preimage my = surface_->transferAcrossEdge(m, back);
-                if (insideWithTolerance(my))
-                    return clampIntoFace(my);
-            }
-            if (const std::optional<Preimage> my = acrossRegularCorner(m, y.face);
-                my && insideWithTolerance(*my))
-                return clampIntoFace(*my);
+            std::optional<Preimage> at = located(m, kInvalidIndex);
+            if (!at)
+                if (const std::optional<Preimage> my = acrossRegularCorner(m, y.face);
+                    my && insideWithTolerance(*my))
+                    at = clampIntoFace(*my);
+            if (visit(k++, at))
+                return;
         }
-    return std::nullopt; // no common chart: the caller cancels (appendix B)
 }
 
 template <typename Visit>

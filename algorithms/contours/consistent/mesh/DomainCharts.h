@@ -82,11 +82,20 @@ public:
                      std::span<std::optional<Preimage>> out) const;
     // interpolate() given both preimages' equivalents().
     std::optional<Preimage> interpolateIn(PreimageSpan ra, PreimageSpan rb, double t) const;
+    // The same in one common chart of the two (numbered 0, 1, ... in the
+    // order interpolateIn() tries them, interpolationCharts() in all):
+    // near a domain vertex of valence 3 the charts disagree on where the
+    // straight segment runs.
+    std::optional<Preimage> interpolateInChart(PreimageSpan ra, PreimageSpan rb, double t,
+                                               int chart) const;
+    int interpolationCharts(const Preimage& a, const Preimage& b) const;
     // interpolate(a, b, t) for t chosen one at a time (a bisection): a's and
     // b's equivalents() are found once, so at(t) is interpolate(a, b, t)
     // without that search (the same results).
     class Segment;
     Segment segment(const Preimage& a, const Preimage& b) const;
+    // The segment in common chart `chart` only (interpolateInChart()).
+    Segment segmentInChart(const Preimage& a, const Preimage& b, int chart) const;
 
     // A preimage (given by its equivalents()) in the chart of `face`: its
     // own face, an edge neighbour of one of its faces, or (with
@@ -137,30 +146,44 @@ private:
     // The worst orientation over forEachChart(corners), nullopt without a
     // chart.
     template <typename Corners> std::optional<int> worstOrientation(const Corners& corners) const;
+    // Calls visit(k, interpolation or nullopt) for the k-th common chart of
+    // the two preimages (given by their equivalents()) until visit returns
+    // true.
+    template <typename Visit>
+    void forEachInterpolation(PreimageSpan ra, PreimageSpan rb, double t, Visit visit) const;
 };
 
 class DomainCharts::Segment {
 public:
     std::optional<Preimage> at(double t) const {
+        if (chart_ >= 0)
+            return c_->interpolateInChart(span(ra_), span(rb_), t, chart_);
         return a_.face == b_.face ? c_->interpolate(a_, b_, t)
                                   : c_->interpolateIn(span(ra_), span(rb_), t);
     }
 
 private:
     friend class DomainCharts;
-    Segment(const DomainCharts& c, const Preimage& a, const Preimage& b) : c_(&c), a_(a), b_(b) {
-        if (a.face != b.face) {
+    Segment(const DomainCharts& c, const Preimage& a, const Preimage& b, int chart)
+        : c_(&c), a_(a), b_(b), chart_(chart) {
+        if (a.face != b.face || chart >= 0) {
             ra_ = c.equivalents(a);
             rb_ = c.equivalents(b);
         }
     }
     const DomainCharts* c_;
     Preimage a_, b_;
+    int chart_;
     Preimages ra_, rb_;
 };
 
 inline DomainCharts::Segment DomainCharts::segment(const Preimage& a, const Preimage& b) const {
-    return {*this, a, b};
+    return {*this, a, b, -1};
+}
+
+inline DomainCharts::Segment DomainCharts::segmentInChart(const Preimage& a, const Preimage& b,
+                                                          int chart) const {
+    return {*this, a, b, chart};
 }
 
 } // namespace contour::consistent

@@ -5,6 +5,7 @@
 #include "contours/consistent/phases/ContourInsertion.h"
 #include "contours/consistent/phases/PhaseChecks.h"
 #include "contours/consistent/phases/SnapshotRoundTrip.h"
+#include "contours/consistent/predicates/FoldTest.h"
 #include "contours/consistent/predicates/Shiftability.h"
 
 #include <cmath>
@@ -72,6 +73,7 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
     const double snap = options.snapFraction;
     const bool snapAcrossCorners = options.snapAcrossCorners;
     long long inserted = 0, snapped = 0, cancelled = 0, unconverged = 0, cusps = 0;
+    long long snappedAgainstFolds = 0, rootsInAnotherChart = 0, foldingSplits = 0;
     for (const bool cuspStage : {false, true})
         for (bool progress = true; progress;) {
             progress = false;
@@ -89,7 +91,6 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 const Index x = m.vertex(e0).label == VertexLabel::Front ? e0 : e1;
                 const Index y = x == e0 ? e1 : e0;
                 const Preimage px = m.vertex(x).preimage, py = m.vertex(y).preimage;
-                const ConsistentMesh::Segment xy = m.segment(px, py);
                 // g decides; the radial curvature is evaluated for the root
                 // kept, below. g > 0 at x (the bracket's lower end), < 0 at y (its upper end).
                 BisectionOptions search;
@@ -98,16 +99,19 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 search.best = BisectionBest::FromFirst;
                 search.maxIterations = maxIterations;
                 search.tolerance = tol;
-                const BisectionResult<MeshVertex> r = bisect(
-                    [&](double along) -> std::optional<MeshVertex> {
-                        const std::optional<Preimage> p = xy.at(along);
-                        if (!p)
-                            return std::nullopt;
-                        return m.evaluateWithoutCurvature(*p);
-                    },
-                    [](const MeshVertex& v) { return v.g; }, {0.0, 1.0, 1.0, -1.0}, search);
+                const auto rootAlong = [&](const ConsistentMesh::Segment& xy) {
+                    return bisect(
+                        [&](double along) -> std::optional<MeshVertex> {
+                            const std::optional<Preimage> p = xy.at(along);
+                            if (!p)
+                                return std::nullopt;
+                            return m.evaluateWithoutCurvature(*p);
+                        },
+                        [](const MeshVertex& v) { return v.g; }, {0.0, 1.0, 1.0, -1.0}, search);
+                };
+                BisectionResult<MeshVertex> r = rootAlong(m.segment(px, py));
                 std::optional<MeshVertex> root = r.best;
-                const bool converged = r.outcome == BisectionOutcome::Converged;
+                bool converged = r.outcome == BisectionOutcome::Converged;
                 if (r.outcome == BisectionOutcome::Failed || !root) {
                     ++cancelled; // appendix B: no common chart, insertion cancelled
                     continue;
@@ -120,25 +124,55 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 // Snap rule: shift an endpoint onto the root when it is within
                 // snap-fraction of the edge length and shiftable (appendix C).
                 const double length = (m.vertex(x).position - m.vertex(y).position).norm();
-                const double dx = (root->position - m.vertex(x).position).norm();
-                const double dy = (root->position - m.vertex(y).position).norm();
-                bool done = false;
-                for (Index w : dx <= dy ? std::array{x, y} : std::array{y, x}) {
-                    const double d = w == x ? dx : dy;
-                    if (!cuspEdge && d < snap * length && !touchesCuspEdge(m, w) &&
-                        (snapAcrossCorners || snapStaysInEdgeCharts(m, w, root->preimage)) &&
-                        shiftable(m, w, root->preimage, VertexLabel::Contour)) {
-                        m.shiftVertex(w, root->preimage, VertexLabel::Contour, phase);
-                        ++snapped;
-                        done = true;
-                        break;
+                const auto snapOnto = [&](double fraction) {
+                    const double dx = (root->position - m.vertex(x).position).norm();
+                    const double dy = (root->position - m.vertex(y).position).norm();
+                    for (Index w : dx <= dy ? std::array{x, y} : std::array{y, x}) {
+                        const double d = w == x ? dx : dy;
+                        if (!cuspEdge && d < fraction * length && !touchesCuspEdge(m, w) &&
+                            (snapAcrossCorners || snapStaysInEdgeCharts(m, w, root->preimage)) &&
+                            shiftable(m, w, root->preimage, VertexLabel::Contour)) {
+                            m.shiftVertex(w, root->preimage, VertexLabel::Contour, phase);
+                            ++snapped;
+                            return true;
+                        }
                     }
+                    return false;
+                };
+                if (snapOnto(snap))
+                    continue;
+                // Near a domain vertex of valence 3 the root, interpolated
+                // in one chart, can lie on the other side of a new edge in
+                // the chart the new face is read in (appendix B): a fold.
+                // Then the root along the straight segment of another
+                // common chart of x and y, if its split folds nothing; else
+                // an endpoint shifted onto the root, which keeps every face
+                // unfolded (appendix C rule 1) whatever its distance.
+                bool keeps = splitKeepsParameterOrientation(m, x, y, root->preimage);
+                for (int chart = 0, charts = keeps ? 0 : m.interpolationCharts(px, py);
+                     chart < charts && !keeps; ++chart) {
+                    const BisectionResult<MeshVertex> other =
+                        rootAlong(m.segmentInChart(px, py, chart));
+                    if (other.outcome == BisectionOutcome::Failed || !other.best ||
+                        !splitKeepsParameterOrientation(m, x, y, other.best->preimage))
+                        continue;
+                    keeps = true;
+                    ++rootsInAnotherChart;
+                    unconverged -= !converged;
+                    converged = other.outcome == BisectionOutcome::Converged;
+                    unconverged += !converged;
+                    root = m.evaluate(other.best->preimage);
+                    root->label = VertexLabel::Contour;
+                    root->provenance = Provenance::Inserted;
                 }
-                if (!done) {
-                    root->cusp = cuspEdge;
-                    m.splitEdge(x, y, *root, phase);
-                    ++(cuspEdge ? cusps : inserted);
+                if (!keeps && snapOnto(1.0)) {
+                    ++snappedAgainstFolds;
+                    continue;
                 }
+                foldingSplits += !keeps;
+                root->cusp = cuspEdge;
+                m.splitEdge(x, y, *root, phase);
+                ++(cuspEdge ? cusps : inserted);
             }
         }
     publish(s, m);
@@ -147,6 +181,14 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
     s.setCounter(counters::kSnappedVertices, static_cast<double>(snapped));
     s.setCounter(counters::kCancelledInsertions, static_cast<double>(cancelled));
     s.setCounter(counters::kUnconvergedRoots, static_cast<double>(unconverged));
+    s.setCounter(counters::kSnapsAgainstFolds, static_cast<double>(snappedAgainstFolds));
+    s.setCounter(counters::kRootsInAnotherChart, static_cast<double>(rootsInAnotherChart));
+    s.setCounter(counters::kFoldingSplits, static_cast<double>(foldingSplits));
+    if (foldingSplits > 0)
+        s.notes.push_back(std::to_string(foldingSplits) +
+                          " C vertices split an FB edge although a new face is folded in "
+                          "parameter space (appendix B) and neither endpoint could be shifted "
+                          "onto the root");
     if (unconverged > 0)
         s.notes.push_back(std::to_string(unconverged) +
                           " roots did not reach |g| <= root-tolerance within root-max-iterations "

@@ -68,10 +68,15 @@ bool edgeInterpolates(const ConsistentMesh& m, const Preimage& a, const Preimage
 
 bool splitKeepsCharts(const ConsistentMesh& m, Index a, Index b, const Preimage& p) {
     const auto [c, d] = m.oppositeVertices(a, b);
-    const Preimage &pa = m.vertex(a).preimage, &pb = m.vertex(b).preimage;
     for (Index x : {a, b, c, d})
         if (x != kInvalidIndex && !edgeInterpolates(m, p, m.vertex(x).preimage))
             return false;
+    return splitKeepsParameterOrientation(m, a, b, p);
+}
+
+bool splitKeepsParameterOrientation(const ConsistentMesh& m, Index a, Index b, const Preimage& p) {
+    const auto [c, d] = m.oppositeVertices(a, b);
+    const Preimage &pa = m.vertex(a).preimage, &pb = m.vertex(b).preimage;
     for (const auto& [x, y, z] : {std::array{a, b, c}, std::array{b, a, d}}) {
         if (z == kInvalidIndex)
             continue;

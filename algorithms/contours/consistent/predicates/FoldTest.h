@@ -60,6 +60,10 @@ bool edgeInterpolates(const ConsistentMesh& m, const Preimage& a, const Preimage
 // parameter space with a common chart, and every new edge interpolable
 // (appendix B; the mesh's post-conditions). The 3D half is the caller's.
 bool splitKeepsCharts(const ConsistentMesh& m, Index a, Index b, const Preimage& p);
+// Its second half alone: every new face is counter-clockwise in every
+// common chart of its corners (has one), whether or not its edges
+// interpolate everywhere.
+bool splitKeepsParameterOrientation(const ConsistentMesh& m, Index a, Index b, const Preimage& p);
 
 // Would moving vertex v to `position` turn one of its faces over in 3D (a
 // face's new normal against its current one)? The parameter-space half is
