@@ -449,6 +449,32 @@ private slots:
                  qPrintable(describe(qInP)));
     }
 
+    // Two corners in faces that share only a domain vertex (here a regular
+    // one, with the one-ring charts off) and the third in the first face:
+    // neither corner's face holds the three, the chart of a face next to
+    // both does (the third tier of forEachChart). It must read the
+    // triangle as the one-ring's chart does, both ways round.
+    void chartOfAFaceNoCornerLiesIn() {
+        const DiagonalPair d = diagonalAtRegularCorner();
+        QVERIFY(d.faces[0] != kInvalidIndex);
+        const Preimage p = nearCorner(d.faces[0], d.corners[0]);
+        // Off the diagonal through the corner, which q lies on.
+        const Vec2 c = SmoothSurface::cornerCoordinates(true, d.corners[0]);
+        const Preimage pOff{d.faces[0], 0.5 * c.x() + 0.25, 0.8 * c.y() + 0.1};
+        const Preimage q = nearCorner(d.faces[1], d.corners[1]);
+        for (const auto& t : {std::array{p, q, pOff}, std::array{p, pOff, q}}) {
+            const std::optional<int> withoutRings = charts(false).parameterOrientation(t);
+            const std::optional<int> withRings = charts(true).parameterOrientation(t);
+            QVERIFY(withoutRings && withRings);
+            QCOMPARE(*withoutRings, *withRings);
+            QVERIFY(*withoutRings != 0);
+            // Two faces around the corner are next to both.
+            QCOMPARE(charts(false).chartCoordinates(t).size(), size_t(2));
+        }
+        QCOMPARE(*charts(false).parameterOrientation({p, q, pOff}),
+                 -*charts(false).parameterOrientation({p, pOff, q}));
+    }
+
     // Faces far apart: no common chart, whatever is asked.
     void noCommonChart() {
         const std::array<Index, 2> f = farApartFaces();

@@ -323,34 +323,58 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
     // such chart is cut (corners in all three faces around a domain vertex
     // of valence 3, where no chart is faithful) the cut ones.
     Preimages tried;
+    const auto tryChart = [&](Index face, bool cut) {
+        if (std::any_of(tried.begin(), tried.end(),
+                        [&](const Preimage& x) { return x.face == face; }))
+            return false;
+        tried.push_back({face, 0.0, 0.0});
+        if (cutBetweenNeighbours(reps, face) != cut)
+            return false;
+        std::array<Vec2, 3> c;
+        for (int i = 0; i < 3; ++i) {
+            const std::optional<Vec2> x = inChart(reps[i], face);
+            if (!x)
+                return false;
+            c[i] = *x;
+        }
+        visit(c);
+        return true;
+    };
     const auto extended = [&](bool cut) {
         bool visited = false;
         tried = Preimages{};
         for (const auto& candidates : reps)
-            for (const Preimage& chart : candidates) {
-                if (std::any_of(tried.begin(), tried.end(),
-                                [&](const Preimage& x) { return x.face == chart.face; }))
-                    continue;
-                tried.push_back(chart);
-                if (cutBetweenNeighbours(reps, chart.face) != cut)
-                    continue;
-                std::array<Vec2, 3> c;
-                bool all = true;
-                for (int i = 0; i < 3 && all; ++i) {
-                    const std::optional<Vec2> x = inChart(reps[i], chart.face);
-                    all = x.has_value();
-                    if (all)
-                        c[i] = *x;
-                }
-                if (all) {
-                    visit(c);
-                    visited = true;
-                }
-            }
+            for (const Preimage& chart : candidates)
+                visited |= tryChart(chart.face, cut);
         return visited;
     };
-    if (!extended(false))
-        extended(true);
+    if (extended(false) || extended(true))
+        return;
+    // Nor any: the chart of a face none of the corners lies in, an edge
+    // neighbour of the first corner's faces, extended across its edges
+    // (appendix B asks for a common chart, not one of the corners' own):
+    // two corners in faces that share only an irregular domain vertex, the
+    // third in a face next to both. A split of a face whose chart was one
+    // of its corners' (contour insertion) needs it.
+    const auto neighbours = [&](bool cut) {
+        bool visited = false;
+        for (const Preimage& r : reps[0])
+            for (int e = 0; e < cornerCount(r.face); ++e)
+                if (const Index nb = surface_->neighbor(r.face, e).face; nb != kInvalidIndex)
+                    visited |= tryChart(nb, cut);
+        return visited;
+    };
+    tried = Preimages{};
+    for (const auto& candidates : reps)
+        for (const Preimage& chart : candidates)
+            tried.push_back(chart);
+    if (!neighbours(false)) {
+        tried = Preimages{};
+        for (const auto& candidates : reps)
+            for (const Preimage& chart : candidates)
+                tried.push_back(chart);
+        neighbours(true);
+    }
 }
 
 // The charts a mesh without setVertexRingCharts has: each pair in one face
