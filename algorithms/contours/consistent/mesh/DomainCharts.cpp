@@ -350,17 +350,34 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
     };
     if (extended(false) || extended(true))
         return;
-    // Nor any: the chart of a face none of the corners lies in, an edge
-    // neighbour of the first corner's faces, extended across its edges
-    // (appendix B asks for a common chart, not one of the corners' own):
-    // two corners in faces that share only an irregular domain vertex, the
-    // third in a face next to both. A split of a face whose chart was one
-    // of its corners' (contour insertion) needs it.
+    // Nor any: the chart of a face none of the corners lies in, extended
+    // across its edges (appendix B asks for a common chart, not one of the
+    // corners' own), when that face and a face of every corner share a
+    // domain vertex: two corners in faces that share only an irregular
+    // domain vertex, the third in a face next to both, all in that vertex's
+    // one-ring. A split of a face whose chart was one of its corners'
+    // (contour insertion) needs it; triangles spanning more than one ring
+    // keep having no chart.
+    const PolygonMesh& domain = surface_->domain();
+    const auto aroundOneVertex = [&](Index face) {
+        for (const Index w : domain.face(face)) {
+            const auto touches = [&](const PreimageSpan& r) {
+                return std::any_of(r.begin(), r.end(), [&](const Preimage& x) {
+                    const auto corners = domain.face(x.face);
+                    return std::find(corners.begin(), corners.end(), w) != corners.end();
+                });
+            };
+            if (std::all_of(reps.begin(), reps.end(), touches))
+                return true;
+        }
+        return false;
+    };
     const auto neighbours = [&](bool cut) {
         bool visited = false;
         for (const Preimage& r : reps[0])
             for (int e = 0; e < cornerCount(r.face); ++e)
-                if (const Index nb = surface_->neighbor(r.face, e).face; nb != kInvalidIndex)
+                if (const Index nb = surface_->neighbor(r.face, e).face;
+                    nb != kInvalidIndex && aroundOneVertex(nb))
                     visited |= tryChart(nb, cut);
         return visited;
     };

@@ -116,8 +116,8 @@ public:
     // The three preimages' coordinates in every common chart: the domain
     // faces holding all three, or else the faces whose chart extended across
     // their edges holds all three (the corners' faces, and only when none
-    // does, the edge neighbours of the first corner's faces); empty when
-    // there is none.
+    // does, an edge neighbour of the first corner's faces that shares a
+    // domain vertex with a face of every corner); empty when there is none.
     std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const;
     // Whether p[0] shares a face or edge-adjacent faces with p[1] and with
     // p[2], and the three lie in one face's chart extended across its edges:
