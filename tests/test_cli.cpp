@@ -346,6 +346,33 @@ private slots:
         QVERIFY(!r.out.contains("graph   "));
     }
 
+    // --illustration-svg writes the clean drawing beside the diagnostic
+    // SVG: Inkscape layers, no node markers; --illustration-hidden adds the
+    // hidden layer; the two paths must differ.
+    void illustrationSvg() {
+        const QString out = freshOutputDir("illustration");
+        for (const bool hidden : {false, true}) {
+            QStringList args{
+                "--mesh",    torus_,  "--method",     "consistent",         "--eye",
+                "3,0.4,0.9", "--svg", out + "/d.svg", "--illustration-svg", out + "/i.svg"};
+            if (hidden)
+                args << "--illustration-hidden";
+            const RunResult r = run(args);
+            QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+            QVERIFY(r.out.contains(out + "/i.svg"));
+            const SvgFile svg = readSvg(out + "/i.svg");
+            QVERIFY2(svg.ok, qPrintable(svg.error));
+            QVERIFY(svg.groups.contains("visible") && svg.groups.contains("visible-contour"));
+            QCOMPARE(svg.groups.contains("hidden"), hidden);
+            QVERIFY(!svg.groups.contains("nodes"));
+            QVERIFY(svg.markers.empty());
+            QVERIFY(readSvg(out + "/d.svg").groups.contains("nodes"));
+        }
+        const RunResult same =
+            run({"--mesh", torus_, "--svg", out + "/x.svg", "--illustration-svg", out + "/x.svg"});
+        QCOMPARE(same.exitCode, 2);
+    }
+
     // --simplify true hides short visible chains (Bénard 2014 §9) without
     // removing any: the same chains, the hidden ones in the "simplified"
     // layer, none longer than the threshold.

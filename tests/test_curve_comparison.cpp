@@ -33,6 +33,8 @@ private slots:
     void symmetric();
     void drawnCurvesOfAViewGraph();
     void realRuns();
+    void distanceField();
+    void nodesOnlyOneSideDraws();
 };
 
 void TestCurveComparison::knownDifferences_data() {
@@ -146,6 +148,46 @@ void TestCurveComparison::realRuns() {
         differing += d.onlyInALength + d.onlyInBLength > 0.0;
     }
     QVERIFY(differing > 0);
+}
+
+// The distance along a line 1.5 px above another, capped where the other
+// ends: 1.5 px over the shared part, the cap beyond; every vertex and a
+// point at least every step measured.
+void TestCurveComparison::distanceField() {
+    const std::vector<ImagePolyline> a{{{0.0, 0.0}, {20.0, 0.0}}};
+    const std::vector<ImagePolyline> b{{{0.0, 1.5}, {10.0, 1.5}}};
+    const CurveDistanceField f = distanceAlongCurves(a, b, 5.0, 1.0);
+    QCOMPARE(f.points.size(), size_t(1));
+    QCOMPARE(f.points[0].size(), size_t(21));
+    QCOMPARE(f.count, 21LL);
+    for (size_t i = 0; i < f.points[0].size(); ++i) {
+        const double x = f.points[0][i].x();
+        const double expected = x <= 10.0 ? 1.5 : std::min(5.0, std::hypot(x - 10.0, 1.5));
+        QVERIFY2(std::abs(f.distances[0][i] - expected) < 1e-12,
+                 qPrintable(QString("x %1: %2").arg(x).arg(f.distances[0][i])));
+    }
+    QCOMPARE(f.max, 5.0);
+    QVERIFY(f.mean > 1.5 && f.mean < 5.0);
+    // Nothing on the other side: every point at the cap.
+    const CurveDistanceField none = distanceAlongCurves(a, {}, 3.0, 1.0);
+    QCOMPARE(none.mean, 3.0);
+    QCOMPARE(none.p95, 3.0);
+}
+
+// Cusps and T-junctions matched within the tolerance; the rest listed per
+// side.
+void TestCurveComparison::nodesOnlyOneSideDraws() {
+    DrawingNodes a, b;
+    a.cusps = {{10.0, 10.0}, {50.0, 50.0}};
+    b.cusps = {{11.0, 10.0}, {90.0, 10.0}, {91.0, 10.0}};
+    a.tJunctions = {{0.0, 0.0}};
+    const NodeDifference d = compareNodes(a, b, 2.0);
+    QCOMPARE(d.cuspsOnlyInA, (std::vector<Vec2>{{50.0, 50.0}}));
+    QCOMPARE(d.cuspsOnlyInB.size(), size_t(2));
+    QCOMPARE(d.tJunctionsOnlyInA.size(), size_t(1));
+    QVERIFY(d.tJunctionsOnlyInB.empty());
+    const NodeDifference swapped = compareNodes(b, a, 2.0);
+    QCOMPARE(swapped.cuspsOnlyInB, d.cuspsOnlyInA);
 }
 
 QTEST_GUILESS_MAIN(TestCurveComparison)

@@ -57,6 +57,7 @@ private slots:
     void followsThePhases();
     void rerunsForANewCamera();
     void powellSabinSideBySide();
+    void distanceToTheTracedContour();
     void turnedOff();
 
 private:
@@ -185,6 +186,44 @@ void TestMethodComparison::powellSabinSideBySide() {
     // drawings differ by more than 2 px along most of their length (spot:
     // about 80 %), yet each shares some of its length with the other.
     QVERIFY(d.onlyInALength < d.lengthA && d.onlyInBLength < d.lengthB);
+}
+
+// Against the traced contour (Summers 2016, the smooth surface's own): the
+// distance from the consistent drawing to it along the curves, and the cusps
+// and T-junctions only one side draws, as the window computes them.
+void TestMethodComparison::distanceToTheTracedContour() {
+    CurveDifference d;
+    compareWith(QStringLiteral("traced"), &d);
+    if (QTest::currentTestFailed())
+        return;
+    const Camera camera = *window_->analysisCamera();
+    const auto here = drawnCurves(window_->currentSnapshot(), camera);
+    const auto there = drawnCurves(*window_->methodComparison()->result(), camera);
+    const CurveDistanceField expected = distanceAlongCurves(here, there, 20.0, 1.0);
+    const CurveDistanceField* shown = window_->imageView()->comparisonDistances();
+    QVERIFY(shown);
+    QCOMPARE(shown->count, expected.count);
+    QCOMPARE(shown->mean, expected.mean);
+    QCOMPARE(shown->max, expected.max);
+    const NodeDifference* nodes = window_->imageView()->comparisonNodes();
+    QVERIFY(nodes);
+    const NodeDifference expectedNodes =
+        compareNodes(drawnNodes(window_->currentSnapshot(), camera),
+                     drawnNodes(*window_->methodComparison()->result(), camera), 4.0);
+    QCOMPARE(nodes->a.cusps.size(), expectedNodes.a.cusps.size());
+    QCOMPARE(nodes->b.cusps.size(), expectedNodes.b.cusps.size());
+    QCOMPARE(nodes->cuspsOnlyInA.size(), expectedNodes.cuspsOnlyInA.size());
+    QCOMPARE(nodes->a.curves, expectedNodes.a.curves);
+    qInfo("spot, consistent against traced: distance mean %.3f, 95 %% %.3f, max %.3f px over "
+          "%lld points; curves %d vs %d; cusps %zu vs %zu (%zu, %zu unmatched); T %zu vs %zu",
+          shown->mean, shown->p95, shown->max, shown->count, nodes->a.curves, nodes->b.curves,
+          nodes->a.cusps.size(), nodes->b.cusps.size(), nodes->cuspsOnlyInA.size(),
+          nodes->cuspsOnlyInB.size(), nodes->a.tJunctions.size(), nodes->b.tJunctions.size());
+    // Both draw the smooth surface's contour: within a pixel on average.
+    QVERIFY(shown->mean < 1.0);
+    QVERIFY(nodes->a.cusps.size() > 0);
+    QVERIFY(
+        window_->imageView()->comparisonCaption().contains(QStringLiteral("distance to traced")));
 }
 
 void TestMethodComparison::turnedOff() {

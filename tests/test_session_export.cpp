@@ -116,6 +116,7 @@ private slots:
     void initTestCase();
     void shortcutsAndAbout();
     void exportSnapshot();
+    void exportIllustration();
     void sessionRoundTrip();
     void sessionRestoresThePreset();
     void sessionKeepsTheMeshOrientation();
@@ -317,6 +318,51 @@ void TestSessionExport::exportSnapshot() {
     QCOMPARE(session.method, std::string("consistent"));
     QCOMPARE(session.phaseReached, runner->completedPhases());
     QCOMPARE(session.phaseName, current.phaseName);
+}
+
+// File › Export illustration SVG: the clean drawing of the current phase,
+// hidden lines as the 2D view shows them, no node glyphs.
+void TestSessionExport::exportIllustration() {
+    QAction* action = window_->sessionController()->exportIllustrationAction();
+    QVERIFY(action && action->objectName() == QStringLiteral("exportIllustration"));
+    const auto groupsOf = [](const QString& path, int* paths) {
+        QFile file(path);
+        QStringList ids;
+        *paths = 0;
+        if (!file.open(QIODevice::ReadOnly))
+            return ids;
+        QXmlStreamReader xml(&file);
+        while (!xml.atEnd()) {
+            xml.readNext();
+            if (xml.isStartElement() && xml.name() == QLatin1String("g"))
+                ids << xml.attributes().value(QStringLiteral("id")).toString();
+            if (xml.isStartElement() && xml.name() == QLatin1String("path"))
+                ++*paths;
+            if (xml.isStartElement())
+                for (const QXmlStreamAttribute& a : xml.attributes())
+                    if (a.name().startsWith(QLatin1String("data-")))
+                        ids << QStringLiteral("data attribute");
+        }
+        if (xml.hasError())
+            ids << QStringLiteral("error: ") + xml.errorString();
+        return ids;
+    };
+    QAction* hidden = window_->viewGraphAction(MainWindow::ViewGraphToggle::HiddenCurves);
+    const bool wasShown = hidden->isChecked();
+    for (const bool show : {true, false}) {
+        hidden->setChecked(show);
+        const QString path = dir_.filePath(show ? "with-hidden.svg" : "visible-only.svg");
+        QVERIFY2(window_->exportIllustrationSvg(path), qPrintable(window_->lastError()));
+        int paths = 0;
+        const QStringList ids = groupsOf(path, &paths);
+        QVERIFY2(ids.contains("visible") && ids.contains("visible-contour"),
+                 qPrintable(ids.join(' ')));
+        QCOMPARE(ids.contains("hidden"), show);
+        QVERIFY(!ids.contains("nodes") && !ids.contains("data attribute"));
+        QVERIFY(paths > 0);
+        QVERIFY(!ids.join(' ').contains("error"));
+    }
+    hidden->setChecked(wasShown);
 }
 
 void TestSessionExport::sessionRoundTrip() {

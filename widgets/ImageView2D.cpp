@@ -194,12 +194,47 @@ QPainterPath pathOf(const std::vector<ImagePolyline>& lines) {
 void ImageView2D::setComparison(const QString& thisLabel, const QString& otherLabel,
                                 const std::vector<ImagePolyline>& otherCurves,
                                 const CurveDifference& difference) {
-    comparison_ = Comparison{thisLabel,
-                             otherLabel,
-                             pathOf(otherCurves),
-                             pathOf(difference.onlyInA),
-                             pathOf(difference.onlyInB),
-                             difference};
+    comparison_ = Comparison{};
+    comparison_->thisLabel = thisLabel;
+    comparison_->otherLabel = otherLabel;
+    comparison_->other = pathOf(otherCurves);
+    comparison_->onlyHere = pathOf(difference.onlyInA);
+    comparison_->onlyOther = pathOf(difference.onlyInB);
+    comparison_->difference = difference;
+    update();
+}
+
+namespace {
+
+// The distance field's colours, nearest to farthest (ColorBrewer RdYlGn,
+// reversed): green within a pixel, red at the cap.
+QColor distanceColor(int bin) {
+    static const std::array<QColor, ImageView2D::kDistanceBins> ramp{
+        QColor(26, 152, 80),   QColor(145, 207, 96), QColor(217, 239, 139),
+        QColor(254, 224, 139), QColor(252, 141, 89), QColor(215, 48, 39)};
+    return ramp[static_cast<size_t>(std::clamp(bin, 0, ImageView2D::kDistanceBins - 1))];
+}
+
+} // namespace
+
+void ImageView2D::setComparisonDetail(const CurveDistanceField& field,
+                                      const NodeDifference& nodes) {
+    if (!comparison_)
+        return;
+    comparison_->field = field;
+    comparison_->nodes = nodes;
+    for (QPainterPath& bin : comparison_->fieldBins)
+        bin = QPainterPath();
+    for (size_t c = 0; c < field.points.size(); ++c)
+        for (size_t i = 1; i < field.points[c].size(); ++i) {
+            const double d = 0.5 * (field.distances[c][i - 1] + field.distances[c][i]);
+            const int bin =
+                field.cap > 0.0 ? static_cast<int>(std::floor(d / field.cap * kDistanceBins)) : 0;
+            QPainterPath& path =
+                comparison_->fieldBins[static_cast<size_t>(std::clamp(bin, 0, kDistanceBins - 1))];
+            path.moveTo(field.points[c][i - 1].x(), field.points[c][i - 1].y());
+            path.lineTo(field.points[c][i].x(), field.points[c][i].y());
+        }
     update();
 }
 
@@ -213,13 +248,43 @@ QString ImageView2D::comparisonCaption() const {
         return {};
     const CurveDifference& d = comparison_->difference;
     return tr("only %1: %2 of %3 px · only %4: %5 of %6 px (farther than %7 px)")
-        .arg(comparison_->thisLabel)
-        .arg(d.onlyInALength, 0, 'f', 0)
-        .arg(d.lengthA, 0, 'f', 0)
-        .arg(comparison_->otherLabel)
-        .arg(d.onlyInBLength, 0, 'f', 0)
-        .arg(d.lengthB, 0, 'f', 0)
-        .arg(d.tolerancePixels, 0, 'g', 2);
+               .arg(comparison_->thisLabel)
+               .arg(d.onlyInALength, 0, 'f', 0)
+               .arg(d.lengthA, 0, 'f', 0)
+               .arg(comparison_->otherLabel)
+               .arg(d.onlyInBLength, 0, 'f', 0)
+               .arg(d.lengthB, 0, 'f', 0)
+               .arg(d.tolerancePixels, 0, 'g', 2) +
+           comparisonDetailCaption();
+}
+
+QString ImageView2D::comparisonDetailCaption() const {
+    QString text;
+    if (comparison_->field && comparison_->field->count > 0) {
+        const CurveDistanceField& f = *comparison_->field;
+        text += tr(" · distance to %1: mean %2, 95 % %3, max %4 px (capped at %5)")
+                    .arg(comparison_->otherLabel)
+                    .arg(f.mean, 0, 'f', 2)
+                    .arg(f.p95, 0, 'f', 2)
+                    .arg(f.max, 0, 'f', 2)
+                    .arg(f.cap, 0, 'g', 3);
+    }
+    if (comparison_->nodes) {
+        const NodeDifference& n = *comparison_->nodes;
+        text += tr(" · curves %1 vs %2 · cusps %3 vs %4 (%5 and %6 unmatched) · T-junctions "
+                   "%7 vs %8 (%9 and %10 unmatched)")
+                    .arg(n.a.curves)
+                    .arg(n.b.curves)
+                    .arg(n.a.cusps.size())
+                    .arg(n.b.cusps.size())
+                    .arg(n.cuspsOnlyInA.size())
+                    .arg(n.cuspsOnlyInB.size())
+                    .arg(n.a.tJunctions.size())
+                    .arg(n.b.tJunctions.size())
+                    .arg(n.tJunctionsOnlyInA.size())
+                    .arg(n.tJunctionsOnlyInB.size());
+    }
+    return text;
 }
 
 void ImageView2D::paintComparison(QPainter& painter, const QRectF& frame) const {
@@ -237,9 +302,31 @@ void ImageView2D::paintComparison(QPainter& painter, const QRectF& frame) const 
     painter.drawPath(comparison_->onlyHere);
     painter.setPen(linePen(otherHighlight, kComparisonHighlightWidth, Qt::SolidLine));
     painter.drawPath(comparison_->onlyOther);
+    for (int bin = 0; bin < kDistanceBins; ++bin) {
+        painter.setPen(linePen(distanceColor(bin), 2.0, Qt::SolidLine));
+        painter.drawPath(comparison_->fieldBins[static_cast<size_t>(bin)]);
+    }
     painter.setPen(linePen(other, 1.0, Qt::SolidLine));
     painter.drawPath(comparison_->other);
     painter.restore();
+    // Cusps and T-junctions only one side draws, in widget coordinates so
+    // the glyphs keep their size.
+    if (comparison_->nodes) {
+        const NodeDifference& n = *comparison_->nodes;
+        const auto at = [&](const Vec2& p) {
+            return QPointF(frame.left() + p.x() * scale, frame.top() + p.y() * scale);
+        };
+        QColor hereMark = sceneColors::kComparisonOnlyHere.toQColor();
+        QColor otherMark = sceneColors::kComparisonOther.toQColor();
+        for (const Vec2& p : n.cuspsOnlyInA)
+            drawGlyph(painter, at(p), NodeGlyph::Ring, hereMark, 11.0);
+        for (const Vec2& p : n.cuspsOnlyInB)
+            drawGlyph(painter, at(p), NodeGlyph::Ring, otherMark, 11.0);
+        for (const Vec2& p : n.tJunctionsOnlyInA)
+            drawGlyph(painter, at(p), NodeGlyph::Cross, hereMark, 9.0);
+        for (const Vec2& p : n.tJunctionsOnlyInB)
+            drawGlyph(painter, at(p), NodeGlyph::Cross, otherMark, 9.0);
+    }
     // The lengths, above the viewport size at the bottom, wrapped.
     painter.save();
     const QRectF box(frame.left() + 4.0, frame.bottom() - 58.0, frame.width() - 8.0, 38.0);
@@ -552,6 +639,23 @@ void ImageView2D::appendComparisonLegend(std::vector<LegendEntry>& entries) cons
                        tr("only %1").arg(comparison_->thisLabel)});
     entries.push_back({LegendEntry::WideLine, other, NodeGlyph::Square,
                        tr("only %1").arg(comparison_->otherLabel)});
+    if (comparison_->field) {
+        entries.push_back({LegendEntry::Line, distanceColor(0), NodeGlyph::Square,
+                           tr("< %1 px from %2")
+                               .arg(comparison_->field->cap / kDistanceBins, 0, 'g', 2)
+                               .arg(comparison_->otherLabel)});
+        entries.push_back({LegendEntry::Line, distanceColor(kDistanceBins - 1), NodeGlyph::Square,
+                           tr("≥ %1 px").arg(comparison_->field->cap, 0, 'g', 2)});
+    }
+    if (comparison_->nodes) {
+        const NodeDifference& n = *comparison_->nodes;
+        if (!n.cuspsOnlyInA.empty() || !n.cuspsOnlyInB.empty())
+            entries.push_back({LegendEntry::Glyph, sceneColors::kComparisonOnlyHere.toQColor(),
+                               NodeGlyph::Ring, tr("cusp of one side only")});
+        if (!n.tJunctionsOnlyInA.empty() || !n.tJunctionsOnlyInB.empty())
+            entries.push_back({LegendEntry::Glyph, sceneColors::kComparisonOnlyHere.toQColor(),
+                               NodeGlyph::Cross, tr("T-junction of one side only")});
+    }
 }
 
 QRectF ImageView2D::legendRect() const {

@@ -76,6 +76,19 @@ public:
     void setComparison(const QString& thisLabel, const QString& otherLabel,
                        const std::vector<ImagePolyline>& otherCurves,
                        const CurveDifference& difference);
+    // With the comparison: the distance from this method's drawn curves to
+    // the other's as a field along them (coloured from kDistanceRamp, 0 to
+    // the field's cap), the cusps and T-junctions only one side draws
+    // (rings and squares) and both sides' counts in the caption.
+    void setComparisonDetail(const CurveDistanceField& field, const NodeDifference& nodes);
+    const CurveDistanceField* comparisonDistances() const {
+        return comparison_ && comparison_->field ? &*comparison_->field : nullptr;
+    }
+    const NodeDifference* comparisonNodes() const {
+        return comparison_ && comparison_->nodes ? &*comparison_->nodes : nullptr;
+    }
+    // Segments of the distance field drawn, per colour bin (0 nearest).
+    static constexpr int kDistanceBins = 6;
     void clearComparison();
     bool showsComparison() const { return comparison_.has_value(); }
     // The difference shown, or null.
@@ -173,9 +186,13 @@ private:
         QString thisLabel, otherLabel;
         QPainterPath other, onlyHere, onlyOther; // in image pixels
         CurveDifference difference;
+        std::optional<CurveDistanceField> field;
+        std::array<QPainterPath, kDistanceBins> fieldBins; // by distance, nearest first
+        std::optional<NodeDifference> nodes;
     };
     void paintComparison(QPainter& painter, const QRectF& frame) const;
     void appendComparisonLegend(std::vector<LegendEntry>& entries) const;
+    QString comparisonDetailCaption() const;
     std::optional<Comparison> comparison_;
 
     // Projects the ground truth's loops and cusps with the camera.

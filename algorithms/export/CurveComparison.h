@@ -35,4 +35,40 @@ struct CurveDifference {
 CurveDifference compareCurves(const std::vector<ImagePolyline>& a,
                               const std::vector<ImagePolyline>& b, double tolerancePixels);
 
+// The distance from points along each curve of `lines` to the nearest
+// curve of `other`, in pixels, capped at `cap` (a point with no curve of the
+// other side within the cap reads cap): a distance field along the curves.
+// Points are taken at most every `step` pixels, each curve's vertices
+// included.
+struct CurveDistanceField {
+    double cap = 0.0;
+    std::vector<ImagePolyline> points;          // per curve, the points measured
+    std::vector<std::vector<double>> distances; // per curve, per point
+    double mean = 0.0, p95 = 0.0, max = 0.0;    // over the points, weighted alike
+    long long count = 0;
+};
+CurveDistanceField distanceAlongCurves(const std::vector<ImagePolyline>& lines,
+                                       const std::vector<ImagePolyline>& other, double cap,
+                                       double step);
+
+// Where two drawings' topology differs: the nodes a view graph draws
+// (curtain folds, T-junctions) and its closed and open visible curves.
+struct DrawingNodes {
+    std::vector<Vec2> cusps;      // curtain folds (boundary ones included) with a visible chain
+    std::vector<Vec2> tJunctions; // image intersections with a visible chain
+    int curves = 0;               // visible strokes' connected components
+};
+// What a snapshot draws: without a view graph no node, and one component
+// per projected curve piece.
+DrawingNodes drawnNodes(const Snapshot& snapshot, const Camera& camera);
+
+struct NodeDifference {
+    double tolerancePixels = 0.0;
+    // Nodes of one side with none of the same kind on the other within the
+    // tolerance.
+    std::vector<Vec2> cuspsOnlyInA, cuspsOnlyInB, tJunctionsOnlyInA, tJunctionsOnlyInB;
+    DrawingNodes a, b;
+};
+NodeDifference compareNodes(const DrawingNodes& a, const DrawingNodes& b, double tolerancePixels);
+
 } // namespace contour

@@ -71,4 +71,22 @@ std::vector<ProjectedPolyline> projectCurves(const std::vector<Polyline>& curves
     return out;
 }
 
+std::vector<std::vector<Vec2>> projectChain(const ViewChain& chain, const Camera& camera) {
+    std::vector<std::vector<Vec2>> pieces;
+    bool open = false;
+    for (const Vec3& point : chain.points) {
+        const ProjectedPoint p = camera.project(point);
+        if ((camera.isOrthographic() || p.depth > 0.0) && p.pixel.allFinite()) {
+            if (!open)
+                pieces.emplace_back();
+            pieces.back().push_back(p.pixel);
+            open = true;
+        } else {
+            open = false;
+        }
+    }
+    std::erase_if(pieces, [](const std::vector<Vec2>& piece) { return piece.size() < 2; });
+    return pieces;
+}
+
 } // namespace contour

@@ -5,6 +5,7 @@
 // pieces; the JSON report measures them.
 #include "camera/Camera.h"
 #include "pipeline/Snapshot.h"
+#include "pipeline/ViewGraph.h"
 
 #include <cstddef>
 #include <vector>
@@ -28,5 +29,9 @@ struct ProjectedPolyline {
 
 std::vector<ProjectedPolyline> projectCurves(const std::vector<Polyline>& curves,
                                              const Camera& camera);
+
+// A view-graph chain's drawable pieces, the same way: runs of at least two
+// points in front of a perspective eye, in pixels.
+std::vector<std::vector<Vec2>> projectChain(const ViewChain& chain, const Camera& camera);
 
 } // namespace contour

@@ -1,23 +1,16 @@
 #include "export/SvgWriter.h"
 
-#include "export/ProjectedCurves.h"
 #include "core/AtomicFile.h"
+#include "export/ProjectedCurves.h"
+#include "export/SvgText.h"
 #include "pipeline/ViewGraph.h"
 
 #include <array>
-#include <charconv>
 #include <string_view>
 
 namespace contour {
 
 namespace {
-
-void appendNumber(std::string& out, double x) {
-    std::array<char, 64> buffer{};
-    const auto result =
-        std::to_chars(buffer.data(), buffer.data() + buffer.size(), x, std::chars_format::fixed, 3);
-    out.append(buffer.data(), result.ptr);
-}
 
 void appendPoints(std::string& out, const std::vector<Vec2>& points) {
     out += " points=\"";
@@ -26,34 +19,11 @@ void appendPoints(std::string& out, const std::vector<Vec2>& points) {
         if (!first)
             out += ' ';
         first = false;
-        appendNumber(out, p.x());
+        appendSvgNumber(out, p.x());
         out += ',';
-        appendNumber(out, p.y());
+        appendSvgNumber(out, p.y());
     }
     out += "\"";
-}
-
-std::string escapeXml(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        switch (c) {
-        case '&':
-            out += "&amp;";
-            break;
-        case '<':
-            out += "&lt;";
-            break;
-        case '>':
-            out += "&gt;";
-            break;
-        case '"':
-            out += "&quot;";
-            break;
-        default:
-            out += c;
-        }
-    }
-    return out;
 }
 
 const char* strokeColour(CurveType type) {
@@ -75,7 +45,7 @@ void appendGroup(std::string& out, CurveType type, const std::vector<ProjectedPo
     out += "\" fill=\"none\" stroke=\"";
     out += strokeColour(type);
     out += "\" stroke-width=\"";
-    appendNumber(out, options.strokeWidth);
+    appendSvgNumber(out, options.strokeWidth);
     out += "\" stroke-linejoin=\"round\" stroke-linecap=\"round\">\n";
     for (const ProjectedPolyline& curve : curves) {
         if (curve.type != type)
@@ -91,26 +61,6 @@ void appendGroup(std::string& out, CurveType type, const std::vector<ProjectedPo
         }
     }
     out += "  </g>\n";
-}
-
-// A chain's drawable pieces: runs of points in front of a perspective eye,
-// like ProjectedCurves does for the raw curves.
-std::vector<std::vector<Vec2>> chainPieces(const ViewChain& chain, const Camera& camera) {
-    std::vector<std::vector<Vec2>> pieces;
-    bool open = false;
-    for (const Vec3& point : chain.points) {
-        const ProjectedPoint p = camera.project(point);
-        if ((camera.isOrthographic() || p.depth > 0.0) && p.pixel.allFinite()) {
-            if (!open)
-                pieces.emplace_back();
-            pieces.back().push_back(p.pixel);
-            open = true;
-        } else {
-            open = false;
-        }
-    }
-    std::erase_if(pieces, [](const std::vector<Vec2>& piece) { return piece.size() < 2; });
-    return pieces;
 }
 
 enum class Layer { Visible, Hidden, Simplified };
@@ -129,7 +79,7 @@ void appendChainLayer(std::string& out, const ViewGraph& graph, const Camera& ca
     out += "  <g id=\"";
     out += id;
     out += "\" fill=\"none\" stroke-width=\"";
-    appendNumber(out, options.strokeWidth);
+    appendSvgNumber(out, options.strokeWidth);
     out += "\" stroke-linejoin=\"round\" stroke-linecap=\"round\"";
     if (layer != Layer::Visible) {
         // Hidden lines dashed, a little lighter; simplified ones dotted.
@@ -159,7 +109,7 @@ void appendChainLayer(std::string& out, const ViewGraph& graph, const Camera& ca
             const ViewChain& chain = graph.chains[c];
             if (chain.type != type || layerOf(chain) != layer)
                 continue;
-            const std::vector<std::vector<Vec2>> pieces = chainPieces(chain, camera);
+            const std::vector<std::vector<Vec2>> pieces = projectChain(chain, camera);
             std::string attributes =
                 " data-chain=\"" + std::to_string(c) + "\" data-curve=\"" +
                 std::to_string(chain.curve) + "\" data-qi=\"" + std::to_string(chain.qi) +
@@ -212,14 +162,14 @@ void appendMarker(std::string& out, ViewNodeType type, const Vec2& at, double r,
                   const std::string& attributes) {
     auto xy = [&](double dx, double dy) {
         std::string text;
-        appendNumber(text, at.x() + dx);
+        appendSvgNumber(text, at.x() + dx);
         text += ',';
-        appendNumber(text, at.y() + dy);
+        appendSvgNumber(text, at.y() + dy);
         return text;
     };
     auto num = [](double x) {
         std::string text;
-        appendNumber(text, x);
+        appendSvgNumber(text, x);
         return text;
     };
     out += "      ";

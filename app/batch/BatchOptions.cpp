@@ -236,6 +236,16 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
                    "markers when the method ran its visibility phase).")
         ->type_name("FILE")
         ->group(outputGroup);
+    app.add_option("--illustration-svg", o.illustrationSvgPath,
+                   "Write the clean drawing as SVG: visible strokes chained through the view "
+                   "graph, tapered at curtain folds and dead ends, no node glyphs, one Inkscape "
+                   "layer per curve type.")
+        ->type_name("FILE")
+        ->group(outputGroup);
+    app.add_flag("--illustration-hidden", o.illustrationHidden,
+                 "With --illustration-svg: also draw the hidden lines, dashed, in a layer of "
+                 "their own.")
+        ->group(outputGroup);
     app.add_flag("--strict", o.strict,
                  "Exit with code 3 when any post-condition of any phase is violated, or when "
                  "a ray test disagrees with exact QI propagation (visibility conflicts of the "
@@ -419,11 +429,9 @@ ParseResult parseBatchOptions(int argc, const char* const* argv) {
         o.snapshotDir.pop_back();
     // Two outputs with one name would overwrite each other.
     const std::vector<std::pair<std::string, std::string>> outputs{
-        {"--svg", o.svgPath},
-        {"--json", o.jsonPath},
-        {"--write-camera", o.writeCameraPath},
-        {"--ply", o.plyPath},
-        {"--snapshot-dir", o.snapshotDir}};
+        {"--svg", o.svgPath},   {"--illustration-svg", o.illustrationSvgPath},
+        {"--json", o.jsonPath}, {"--write-camera", o.writeCameraPath},
+        {"--ply", o.plyPath},   {"--snapshot-dir", o.snapshotDir}};
     for (size_t i = 0; i < outputs.size(); ++i)
         for (size_t j = i + 1; j < outputs.size(); ++j)
             if (!outputs[i].second.empty() && outputs[i].second == outputs[j].second)

@@ -45,6 +45,10 @@ struct BatchOptions {
     bool views26 = false;
     std::optional<int> phases; // stop after this many phases; all when empty
     std::string svgPath, jsonPath, writeCameraPath, plyPath;
+    // --illustration-svg: the drawing for an illustrator (IllustrationSvg.h),
+    // with hidden lines when --illustration-hidden.
+    std::string illustrationSvgPath;
+    bool illustrationHidden = false;
     // --snapshot-dir: per view, the diagnostic snapshot's report.json,
     // view-2d.svg, mesh.ply and session.cwsession (DiagnosticSnapshot.h);
     // with several views one sub-folder per view (view00, ...).

@@ -5,6 +5,7 @@
 #include "SnapshotImages.h"
 #include "Summary.h"
 #include "export/DiagnosticSnapshot.h"
+#include "export/IllustrationSvg.h"
 #include "export/JsonReport.h"
 #include "export/SnapshotPly.h"
 #include "export/SvgWriter.h"
@@ -30,8 +31,8 @@ constexpr const char* kToolName = "contour-batch";
 
 // Fails before any work when an output's folder does not exist.
 void checkOutputFolders(const BatchOptions& o) {
-    for (const std::string& path :
-         {o.svgPath, o.jsonPath, o.writeCameraPath, o.plyPath, o.snapshotDir}) {
+    for (const std::string& path : {o.svgPath, o.illustrationSvgPath, o.jsonPath, o.writeCameraPath,
+                                    o.plyPath, o.snapshotDir}) {
         if (path.empty())
             continue;
         std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -244,6 +245,15 @@ void addSvg(RunOutputs& r, const ViewRun& v) {
         {v.outputPath(r.options.svgPath), svgDocument(v.runner.current(), v.camera, options), {}});
 }
 
+void addIllustrationSvg(RunOutputs& r, const ViewRun& v) {
+    IllustrationOptions options;
+    options.title = v.title;
+    options.drawHidden = r.options.illustrationHidden;
+    r.pending.files.push_back({v.outputPath(r.options.illustrationSvgPath),
+                               illustrationSvgDocument(v.runner.current(), v.camera, options),
+                               {}});
+}
+
 void addCameraFile(RunOutputs& r, const ViewRun& v) {
     r.pending.files.push_back(
         {v.outputPath(r.options.writeCameraPath), v.camera.toJson().dump(2) + "\n", {}});
@@ -307,12 +317,14 @@ void addPly(RunOutputs& r, const ViewRun& v, std::ostream& out) {
          }});
 }
 
-// The per-view outputs the options ask for, in a fixed order: SVG, camera,
+// The per-view outputs the options ask for, in a fixed order: SVG, illustration SVG, camera,
 // snapshot folder, PLY.
 void addViewOutputs(RunOutputs& r, const ViewRun& v, std::ostream& out) {
     const BatchOptions& o = r.options;
     if (!o.svgPath.empty())
         addSvg(r, v);
+    if (!o.illustrationSvgPath.empty())
+        addIllustrationSvg(r, v);
     if (!o.writeCameraPath.empty())
         addCameraFile(r, v);
     if (!o.snapshotDir.empty())

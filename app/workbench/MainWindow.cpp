@@ -19,6 +19,7 @@
 #include "contours/Methods.h"
 #include "contours/common/SurfacePhase.h"
 #include "export/CurveComparison.h"
+#include "export/IllustrationSvg.h"
 #include "mesh/MeshError.h"
 #include "mesh/Orientation.h"
 #include "mesh/io/MeshReader.h"
@@ -973,9 +974,15 @@ void MainWindow::updateComparison() {
     const std::vector<ImagePolyline> there = drawnCurves(*comparison_->result(), camera);
     // Short registry names ("consistent"): the 2D view's legend is narrow.
     const Method* method = methodPanel_->method();
+    const double tolerance = defaults_.comparisonTolerancePixels;
     imageView_->setComparison(method ? QString::fromStdString(method->name) : tr("this method"),
-                              other, there,
-                              compareCurves(here, there, defaults_.comparisonTolerancePixels));
+                              other, there, compareCurves(here, there, tolerance));
+    // The distance field along this method's curves to the other's, up to
+    // ten tolerances, and the cusps and T-junctions only one side draws.
+    imageView_->setComparisonDetail(
+        distanceAlongCurves(here, there, 10.0 * tolerance, 0.5 * tolerance),
+        compareNodes(drawnNodes(currentSnapshot(), camera),
+                     drawnNodes(*comparison_->result(), camera), 2.0 * tolerance));
 }
 
 void MainWindow::updateGroundTruthRequest() {
@@ -1206,6 +1213,28 @@ bool MainWindow::exportDiagnosticSnapshot(const QString& folder) {
     statusBar()->showMessage(
         tr("Diagnostic snapshot: %1 files written to %2").arg(result.written.size()).arg(folder),
         8000);
+    return true;
+}
+
+bool MainWindow::exportIllustrationSvg(const QString& path) {
+    const Runner* r = runner();
+    if (!r) {
+        showError(tr("Cannot export the illustration"),
+                  tr("Open a mesh and choose a method first"));
+        return false;
+    }
+    IllustrationOptions options;
+    options.title = QFileInfo(meshPath()).fileName().toStdString() + " - " + r->method().label +
+                    ", after " + r->current().phaseName;
+    options.drawHidden = imageView_->showsHiddenCurves();
+    try {
+        writeIllustrationSvg(path.toStdString(), r->current(), r->camera(), options);
+    } catch (const std::exception& e) {
+        showError(tr("Cannot export the illustration"), QString::fromStdString(e.what()));
+        return false;
+    }
+    lastError_.clear();
+    statusBar()->showMessage(tr("Illustration written to %1").arg(path), 8000);
     return true;
 }
 

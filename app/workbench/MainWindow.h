@@ -179,6 +179,9 @@ public:
     bool saveSession(const QString& path);
     bool openSession(const QString& path);
     bool exportDiagnosticSnapshot(const QString& folder);
+    // The illustration SVG (export/IllustrationSvg.h) of the current phase,
+    // with hidden lines when the 2D view shows them.
+    bool exportIllustrationSvg(const QString& path);
     // A session (.cwsession, .json) or a mesh, by its suffix.
     bool openFile(const QString& path);
     // Shows a mesh already read with this method, parameters and analysis

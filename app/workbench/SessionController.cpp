@@ -83,6 +83,13 @@ void SessionController::addFileActions(QMenu* file, QAction* before) {
            "parameters, camera, every phase's counters and time, every inconsistent face), the "
            "labelled mesh as PLY and the session; all files or none (Ctrl+E)"));
     connect(exportAction_, &QAction::triggered, this, &SessionController::exportDialog);
+    illustrationAction_ = new QAction(tr("Export &illustration SVG…"), this);
+    illustrationAction_->setObjectName(QStringLiteral("exportIllustration"));
+    illustrationAction_->setToolTip(
+        tr("Write the clean drawing of the current phase as SVG: visible strokes tapered at "
+           "curtain folds and dead ends, hidden lines when the 2D view shows them, no node "
+           "glyphs, one Inkscape layer per curve type"));
+    connect(illustrationAction_, &QAction::triggered, this, &SessionController::illustrationDialog);
     recentMenu_ = new QMenu(tr("Open &recent"), file);
     connect(recentMenu_, &QMenu::aboutToShow, this, &SessionController::fillRecentMenu);
 
@@ -91,6 +98,7 @@ void SessionController::addFileActions(QMenu* file, QAction* before) {
     file->insertSeparator(before);
     file->insertAction(before, saveAction_);
     file->insertAction(before, exportAction_);
+    file->insertAction(before, illustrationAction_);
     fillRecentMenu();
 }
 
@@ -341,6 +349,17 @@ void SessionController::exportDialog() {
         return;
     settings.setValue(kSnapshotFolderKey, folder);
     window_->exportDiagnosticSnapshot(folder);
+}
+
+void SessionController::illustrationDialog() {
+    QSettings settings;
+    const QString path = QFileDialog::getSaveFileName(window_, tr("Export illustration SVG"),
+                                                      settings.value(kSnapshotFolderKey).toString(),
+                                                      tr("SVG (*.svg)"));
+    if (path.isEmpty())
+        return;
+    settings.setValue(kSnapshotFolderKey, QFileInfo(path).absolutePath());
+    window_->exportIllustrationSvg(path);
 }
 
 } // namespace contour

@@ -63,6 +63,7 @@ public:
     QAction* saveSessionAction() const { return saveAction_; }
     QAction* openSessionAction() const { return openAction_; }
     QAction* exportSnapshotAction() const { return exportAction_; }
+    QAction* exportIllustrationAction() const { return illustrationAction_; }
 
     // Display keys (the "display" map of a session).
     static QString overlayKey(int sceneOverlay);
@@ -75,12 +76,14 @@ private:
     void saveDialog();
     void openDialog();
     void exportDialog();
+    void illustrationDialog();
     void fillRecentMenu();
 
     MainWindow* window_;
     QAction* openAction_ = nullptr;
     QAction* saveAction_ = nullptr;
     QAction* exportAction_ = nullptr;
+    QAction* illustrationAction_ = nullptr;
     QMenu* recentMenu_ = nullptr;
     bool useSettings_ = false;
     QStringList recentInMemory_;
