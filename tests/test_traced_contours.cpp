@@ -8,6 +8,7 @@
 #include "contours/traced/EdgePolynomials.h"
 #include "contours/traced/EdgeSeeds.h"
 #include "contours/traced/InteriorSeeds.h"
+#include "contours/traced/TracedCusps.h"
 #include "contours/traced/TracedState.h"
 #include "pipeline/FieldNames.h"
 #include "reference/DenseGroundTruth.h"
@@ -431,6 +432,48 @@ private slots:
                 for (Index f : line.segmentElement)
                     QVERIFY(f >= 0 && static_cast<size_t>(f) < domainFace.size());
             }
+    }
+
+    // Every cusp of the traced curves is a curtain fold of the view graph
+    // (Polyline::cusps, a fold of the smooth surface: smoothCusp), at the
+    // cusp's place in the image, between the two branches; the branches on
+    // either side are ray-voted apart.
+    void cuspsAreCurtainFolds() {
+        const auto cage = sampleOrShape("spot", 0);
+        const std::vector<Camera> views = protocolViews(cage->boundingBox(), 0);
+        long long folds = 0, withTwoChains = 0;
+        for (size_t v = 0; v < views.size(); v += 5) {
+            const MethodRun r = run("traced", cage, views[v]);
+            const Snapshot& s = r.last();
+            const auto* state =
+                dynamic_cast<const traced::TracedState*>(r.phase("cusps").methodState.get());
+            QVERIFY(state && state->cusps && s.viewGraph);
+            std::vector<Vec2> cuspPixels;
+            for (const traced::TracedCusp& c : *state->cusps)
+                cuspPixels.push_back(views[v].project(c.position).pixel);
+            int viewFolds = 0;
+            for (const ViewNode& n : s.viewGraph->nodes) {
+                if (n.type != ViewNodeType::CurtainFold)
+                    continue;
+                ++viewFolds;
+                QVERIFY(n.smoothCusp);
+                double nearest = std::numeric_limits<double>::infinity();
+                for (const Vec2& p : cuspPixels)
+                    nearest = std::min(nearest, (p - n.image).norm());
+                QVERIFY2(nearest < 0.5, qPrintable(QString("view %1: %2 px").arg(v).arg(nearest)));
+                QVERIFY(n.chains.size() == 2);
+                if (n.chains[0] != n.chains[1]) {
+                    ++withTwoChains;
+                    QCOMPARE(n.qiStep, 1);
+                    QVERIFY(n.farChains[1] != kInvalidIndex && n.nearChains[0] != kInvalidIndex);
+                }
+            }
+            QCOMPARE(viewFolds, static_cast<int>(state->cusps->size()));
+            folds += viewFolds;
+        }
+        qInfo("spot, 6 views: %lld curtain folds at traced cusps, %lld between two chains", folds,
+              withTwoChains);
+        QVERIFY(folds > 0 && withTwoChains > 0);
     }
 };
 

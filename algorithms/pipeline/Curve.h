@@ -21,6 +21,17 @@ struct CurvePoint {
 
 enum class SegmentSource { MeshEdge, Face };
 
+// A cusp found on the curve itself (traced contours: the radial curvature
+// changes sign along it, Bénard 2014 §6.2 d): at parameter tau of segment
+// `segment`, with the radial curvature of the curve just before and just
+// after it (the sign convention of SurfaceFields.h). The view-graph builder
+// makes it a curtain fold of the smooth surface.
+struct CurveCusp {
+    Index segment = 0;
+    double tau = 0.0;
+    double kappaBefore = 0.0, kappaAfter = 0.0;
+};
+
 struct Polyline {
     CurveType type = CurveType::Contour;
     bool closed = false;
@@ -34,6 +45,9 @@ struct Polyline {
     // segment lies over, and two segments meet on the surface only where
     // they are consecutive on one curve, not where their faces touch.
     bool offMesh = false;
+    // Cusps known on the curve, in order along it (empty for curves whose
+    // cusps are mesh vertices).
+    std::vector<CurveCusp> cusps;
 
     size_t segmentCount() const {
         return points.size() < 2 ? 0 : closed ? points.size() : points.size() - 1;

@@ -77,6 +77,7 @@ public:
     ViewGraph build() {
         classifyCurveEdges();
         vertexNodes();
+        curveCusps();
         boundaryJunctionsInFaces();
         surfaceIntersectionEnds();
         imageIntersectionNodes();
@@ -857,6 +858,37 @@ private:
         for (size_t u = 0; u < index.size(); ++u)
             out[index[u]] = flagged[u];
         return out;
+    }
+
+    // Cusps the curves carry themselves (Polyline::cusps, traced contours):
+    // curtain folds of the smooth surface, their far side the branch of the
+    // larger radial curvature, one sheet (fillNodes).
+    void curveCusps() {
+        for (Index c = 0; c < static_cast<Index>(curves_.size()); ++c) {
+            const Polyline& line = curves_[c];
+            const Index n = segmentCount(c);
+            for (const CurveCusp& cusp : line.cusps) {
+                if (cusp.segment < 0 || cusp.segment >= n)
+                    continue;
+                Cut cut;
+                cut.segment = cusp.segment;
+                cut.tau = cusp.tau;
+                // A cusp at a point of the polyline: cut there (tau 0).
+                if (cut.tau >= 1.0) {
+                    cut.segment = (cut.segment + 1) % (line.closed ? n : n + 1);
+                    cut.tau = 0.0;
+                }
+                cut.node = addNode(ViewNodeType::CurtainFold, pointAt(c, cut.segment, cut.tau));
+                graph_.nodes[cut.node].smoothCusp = true;
+                ++stats_.smoothCuspFolds;
+                cut.role = Cut::Role::Vertex;
+                cut.hasBefore = line.closed || cut.segment > 0 || cut.tau > 0.0;
+                cut.hasAfter = line.closed || cut.segment < n;
+                cut.kappaBefore = cusp.kappaBefore;
+                cut.kappaAfter = cusp.kappaAfter;
+                addCut(c, cut);
+            }
+        }
     }
 
     // Open curves must start and end at a node.

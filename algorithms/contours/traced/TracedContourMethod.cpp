@@ -300,6 +300,22 @@ void runCusps(const PhaseContext& ctx, Snapshot& s) {
                           " cusps are jumps of the radial curvature over 0 where the evaluator's "
                           "patches meet next to extraordinary vertices (end caps), not roots");
     s.setCounter(counters::kCuspSamples, static_cast<double>(samples));
+    // The cusps on the published curves (one polyline per traced curve,
+    // one segment per traced segment): the view graph's curtain folds.
+    if (s.curves) {
+        auto curves = std::make_shared<std::vector<Polyline>>(*s.curves);
+        for (const TracedCusp& c : *state->cusps) {
+            if (c.curve < 0 || static_cast<size_t>(c.curve) >= curves->size())
+                continue;
+            (*curves)[static_cast<size_t>(c.curve)].cusps.push_back(
+                {static_cast<Index>(c.segment), c.fraction, c.krBefore, c.krAfter});
+        }
+        for (Polyline& line : *curves)
+            std::sort(line.cusps.begin(), line.cusps.end(), [](const auto& x, const auto& y) {
+                return x.segment != y.segment ? x.segment < y.segment : x.tau < y.tau;
+            });
+        s.curves = std::move(curves);
+    }
     s.methodState = state;
 }
 

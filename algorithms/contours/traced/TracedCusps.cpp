@@ -88,7 +88,8 @@ std::vector<TracedCusp> findTracedCusps(const SmoothSurface& surface, const Came
                 }
             }
             const bool jump = std::min(std::abs(krLo), std::abs(krHi)) > options.jumpCurvature;
-            found[ci].push_back({at.preimage, at.point.position, static_cast<int>(ci), jump});
+            found[ci].push_back({at.preimage, at.point.position, static_cast<int>(ci), jump,
+                                 a.segment, 0.5 * (lo + hi), a.kr, b.kr});
         }
     });
     std::vector<TracedCusp> cusps;

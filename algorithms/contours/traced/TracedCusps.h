@@ -23,6 +23,11 @@ struct TracedCusp {
     // next to extraordinary vertices, SubdivisionSurface.h). Still a sign
     // change, so still counted.
     bool jump = false;
+    // Where along the curve: segment `segment` at `fraction` of its chord,
+    // and the radial curvature at the samples before and after the cusp.
+    size_t segment = 0;
+    double fraction = 0.0;
+    double krBefore = 0.0, krAfter = 0.0;
 };
 
 struct CuspOptions {
