@@ -16,9 +16,11 @@
 #include "surface/SmoothSurfaceFactory.h"
 #include "surface/SurfaceFields.h"
 
+#include <QTemporaryDir>
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <optional>
 #include <set>
 #include <string>
@@ -449,30 +451,80 @@ private slots:
                  qPrintable(describe(qInP)));
     }
 
-    // Two corners in faces that share only a domain vertex (here a regular
-    // one, with the one-ring charts off) and the third in the first face:
-    // neither corner's face holds the three, the chart of a face next to
-    // both does (the third tier of forEachChart). It must read the
-    // triangle as the one-ring's chart does, both ways round.
+    // Two corners in faces that share only an irregular domain vertex (the
+    // apex of a pentagonal pyramid, five faces around it) and the third in
+    // the first face: neither corner's face holds the three, the chart of
+    // the face next to both does (the third tier of forEachChart), and it
+    // reads the reversed triangle reversed. Around a regular vertex the
+    // same triangle keeps no chart without the one-ring charts (those
+    // decide there).
     void chartOfAFaceNoCornerLiesIn() {
+        QTemporaryDir dir;
+        QVERIFY(dir.isValid());
+        const std::string path = dir.filePath("pentagonal_pyramid.obj").toStdString();
+        {
+            std::ofstream obj(path);
+            obj << "v 0 0 1\n";
+            for (int i = 0; i < 5; ++i)
+                obj << "v " << std::cos(2.0 * M_PI * i / 5) << ' ' << std::sin(2.0 * M_PI * i / 5)
+                    << " 0\n";
+            for (int i = 0; i < 5; ++i)
+                obj << "f 1 " << 2 + i << ' ' << 2 + (i + 1) % 5 << "\n";
+            obj << "f 6 5 4 3 2\n";
+        }
+        const auto surface = makeSmoothSurface(readMesh(path), SurfaceKind::CatmullClark);
+        const PolygonMesh& domain = surface->domain();
+        Index apex = kInvalidIndex;
+        std::vector<Index> around;
+        for (Index w = 0; w < domain.vertexCount() && apex == kInvalidIndex; ++w) {
+            around.clear();
+            for (Index f = 0; f < domain.faceCount(); ++f)
+                for (Index x : domain.face(f))
+                    if (x == w)
+                        around.push_back(f);
+            if (around.size() == 5)
+                apex = w;
+        }
+        QVERIFY(apex != kInvalidIndex);
+        const auto adjacent = [&](Index a, Index b) {
+            for (int e = 0; e < 4; ++e)
+                if (surface->neighbor(a, e).face == b)
+                    return true;
+            return false;
+        };
+        Index a = around[0], c = kInvalidIndex;
+        for (Index f : around)
+            if (f != a && !adjacent(a, f))
+                c = f;
+        QVERIFY(c != kInvalidIndex);
+        const auto cornerIn = [&](Index f) {
+            const auto corners = domain.face(f);
+            return static_cast<int>(std::find(corners.begin(), corners.end(), apex) -
+                                    corners.begin());
+        };
+        const Vec2 corner = SmoothSurface::cornerCoordinates(true, cornerIn(a));
+        const Preimage p = nearCorner(a, cornerIn(a));
+        const Preimage pOff{a, 0.5 * corner.x() + 0.25, 0.8 * corner.y() + 0.1};
+        const Preimage q = nearCorner(c, cornerIn(c));
+        for (const bool rings : {false, true}) {
+            DomainCharts charts(surface, kChartTolerance);
+            charts.setVertexRingCharts(rings);
+            const std::optional<int> o = charts.parameterOrientation({p, q, pOff});
+            const std::optional<int> reversed = charts.parameterOrientation({p, pOff, q});
+            QVERIFY(o && reversed && *o != 0);
+            QCOMPARE(*reversed, -*o);
+            QCOMPARE(charts.chartCoordinates({p, q, pOff}).size(), size_t(1));
+        }
+        // The same at a regular corner of the cube's domain: no chart
+        // without the one-ring charts, one with them.
         const DiagonalPair d = diagonalAtRegularCorner();
         QVERIFY(d.faces[0] != kInvalidIndex);
-        const Preimage p = nearCorner(d.faces[0], d.corners[0]);
-        // Off the diagonal through the corner, which q lies on.
-        const Vec2 c = SmoothSurface::cornerCoordinates(true, d.corners[0]);
-        const Preimage pOff{d.faces[0], 0.5 * c.x() + 0.25, 0.8 * c.y() + 0.1};
-        const Preimage q = nearCorner(d.faces[1], d.corners[1]);
-        for (const auto& t : {std::array{p, q, pOff}, std::array{p, pOff, q}}) {
-            const std::optional<int> withoutRings = charts(false).parameterOrientation(t);
-            const std::optional<int> withRings = charts(true).parameterOrientation(t);
-            QVERIFY(withoutRings && withRings);
-            QCOMPARE(*withoutRings, *withRings);
-            QVERIFY(*withoutRings != 0);
-            // Two faces around the corner are next to both.
-            QCOMPARE(charts(false).chartCoordinates(t).size(), size_t(2));
-        }
-        QCOMPARE(*charts(false).parameterOrientation({p, q, pOff}),
-                 -*charts(false).parameterOrientation({p, pOff, q}));
+        const Vec2 cc = SmoothSurface::cornerCoordinates(true, d.corners[0]);
+        const std::array<Preimage, 3> t{
+            nearCorner(d.faces[0], d.corners[0]), nearCorner(d.faces[1], d.corners[1]),
+            Preimage{d.faces[0], 0.5 * cc.x() + 0.25, 0.8 * cc.y() + 0.1}};
+        QVERIFY(!charts(false).parameterOrientation(t));
+        QVERIFY(charts(true).parameterOrientation(t));
     }
 
     // Faces far apart: no common chart, whatever is asked.

@@ -12,6 +12,11 @@ DomainCharts::DomainCharts(std::shared_ptr<const SmoothSurface> surface, double 
     : surface_(std::move(surface)), tolerance_(chartTolerance) {
     if (!surface_)
         throw std::invalid_argument("DomainCharts: no smooth surface");
+    const PolygonMesh& domain = surface_->domain();
+    facesAround_.assign(static_cast<size_t>(domain.vertexCount()), 0);
+    for (Index f = 0; f < domain.faceCount(); ++f)
+        for (const Index w : domain.face(f))
+            ++facesAround_[static_cast<size_t>(w)];
 }
 
 // Domain edge i runs from corner i to corner i+1 (SmoothSurface.h).
@@ -352,15 +357,18 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
         return;
     // Nor any: the chart of a face none of the corners lies in, extended
     // across its edges (appendix B asks for a common chart, not one of the
-    // corners' own), when that face and a face of every corner share a
-    // domain vertex: two corners in faces that share only an irregular
-    // domain vertex, the third in a face next to both, all in that vertex's
-    // one-ring. A split of a face whose chart was one of its corners'
-    // (contour insertion) needs it; triangles spanning more than one ring
-    // keep having no chart.
+    // corners' own), when that face and a face of every corner share an
+    // irregular domain vertex (not four faces around it): two corners in
+    // faces that share only that vertex, the third in a face next to both,
+    // all in its one-ring. A split of a face whose chart was one of its
+    // corners' (contour insertion) needs it. Around a regular vertex the
+    // one-ring charts (setVertexRingCharts) decide; triangles spread over
+    // more than one vertex's ring keep having no chart.
     const PolygonMesh& domain = surface_->domain();
     const auto aroundOneVertex = [&](Index face) {
         for (const Index w : domain.face(face)) {
+            if (facesAround_[static_cast<size_t>(w)] == 4)
+                continue;
             const auto touches = [&](const PreimageSpan& r) {
                 return std::any_of(r.begin(), r.end(), [&](const Preimage& x) {
                     const auto corners = domain.face(x.face);

@@ -116,8 +116,9 @@ public:
     // The three preimages' coordinates in every common chart: the domain
     // faces holding all three, or else the faces whose chart extended across
     // their edges holds all three (the corners' faces, and only when none
-    // does, an edge neighbour of the first corner's faces that shares a
-    // domain vertex with a face of every corner); empty when there is none.
+    // does, an edge neighbour of the first corner's faces that shares an
+    // irregular domain vertex with a face of every corner); empty when there
+    // is none.
     std::vector<std::array<Vec2, 3>> chartCoordinates(const std::array<Preimage, 3>& p) const;
     // Whether p[0] shares a face or edge-adjacent faces with p[1] and with
     // p[2], and the three lie in one face's chart extended across its edges:
@@ -136,6 +137,7 @@ private:
     std::shared_ptr<const SmoothSurface> surface_;
     double tolerance_;
     bool vertexRingCharts_ = false;
+    std::vector<int> facesAround_; // per domain vertex, the domain faces around it
 
     int cornerCount(Index domainFace) const { return surface_->isQuad(domainFace) ? 4 : 3; }
     // Calls visit(coordinates) for every common chart of the three
