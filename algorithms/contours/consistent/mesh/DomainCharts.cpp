@@ -360,10 +360,9 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
     // corners' own), when that face and a face of every corner share an
     // irregular domain vertex (not four faces around it): two corners in
     // faces that share only that vertex, the third in a face next to both,
-    // all in its one-ring. A split of a face whose chart was one of its
-    // corners' (contour insertion) needs it. Around a regular vertex the
-    // one-ring charts (setVertexRingCharts) decide; triangles spread over
-    // more than one vertex's ring keep having no chart.
+    // all in its one-ring. Around a regular vertex the one-ring charts
+    // (setVertexRingCharts) decide; triangles spread over more than one
+    // vertex's ring keep having no chart.
     const PolygonMesh& domain = surface_->domain();
     const auto aroundOneVertex = [&](Index face) {
         for (const Index w : domain.face(face)) {
