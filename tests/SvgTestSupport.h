@@ -63,13 +63,18 @@ inline ParsedSvg parse(const std::string& text) {
     return svg;
 }
 
-inline std::vector<Vec2> points(const SvgElement& polyline) {
+// "x,y x,y ..." as points.
+inline std::vector<Vec2> pointList(const QString& text) {
     std::vector<Vec2> out;
-    for (const QString& pair : polyline.attribute("points").split(' ', Qt::SkipEmptyParts)) {
+    for (const QString& pair : text.split(' ', Qt::SkipEmptyParts)) {
         const QStringList xy = pair.split(',');
         out.emplace_back(xy.value(0).toDouble(), xy.value(1).toDouble());
     }
     return out;
+}
+
+inline std::vector<Vec2> points(const SvgElement& polyline) {
+    return pointList(polyline.attribute("points"));
 }
 
 inline Camera frontCamera() {

@@ -84,15 +84,10 @@ double length(const std::vector<Vec2>& points) {
     return l;
 }
 
+// A path of M, L and Z commands (what the writer emits) as its points.
 std::vector<Vec2> pathPoints(const SvgElement& path) {
-    std::vector<Vec2> out;
     QString d = path.attribute("d");
-    d.replace('M', ' ').replace('L', ' ').replace('Z', ' ');
-    for (const QString& pair : d.split(' ', Qt::SkipEmptyParts)) {
-        const QStringList xy = pair.split(',');
-        out.emplace_back(xy.value(0).toDouble(), xy.value(1).toDouble());
-    }
-    return out;
+    return pointList(d.replace('M', ' ').replace('L', ' ').replace('Z', ' '));
 }
 
 } // namespace

@@ -388,17 +388,16 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
                     visited |= tryChart(nb, cut);
         return visited;
     };
-    tried = Preimages{};
-    for (const auto& candidates : reps)
-        for (const Preimage& chart : candidates)
-            tried.push_back(chart);
-    if (!neighbours(false)) {
+    // The corners' own faces are no candidates here (tried above).
+    const auto neighboursOf = [&](bool cut) {
         tried = Preimages{};
         for (const auto& candidates : reps)
             for (const Preimage& chart : candidates)
                 tried.push_back(chart);
-        neighbours(true);
-    }
+        return neighbours(cut);
+    };
+    if (!neighboursOf(false))
+        neighboursOf(true);
 }
 
 // The charts a mesh without setVertexRingCharts has: each pair in one face
