@@ -380,6 +380,11 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
         return false;
     };
     const auto neighbours = [&](bool cut) {
+        // The corners' own faces are no candidates here (tried above).
+        tried = Preimages{};
+        for (const auto& candidates : reps)
+            for (const Preimage& chart : candidates)
+                tried.push_back(chart);
         bool visited = false;
         for (const Preimage& r : reps[0])
             for (int e = 0; e < cornerCount(r.face); ++e)
@@ -388,16 +393,8 @@ void DomainCharts::forEachChart(const std::array<PreimageSpan, 3>& reps, Visit v
                     visited |= tryChart(nb, cut);
         return visited;
     };
-    // The corners' own faces are no candidates here (tried above).
-    const auto neighboursOf = [&](bool cut) {
-        tried = Preimages{};
-        for (const auto& candidates : reps)
-            for (const Preimage& chart : candidates)
-                tried.push_back(chart);
-        return neighbours(cut);
-    };
-    if (!neighboursOf(false))
-        neighboursOf(true);
+    if (!neighbours(false))
+        neighbours(true);
 }
 
 // The charts a mesh without setVertexRingCharts has: each pair in one face

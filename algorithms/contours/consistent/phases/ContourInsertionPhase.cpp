@@ -118,9 +118,14 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                 }
                 unconverged += !converged;
                 progress = true;
-                root = m.evaluate(root->preimage);
-                root->label = VertexLabel::Contour;
-                root->provenance = Provenance::Inserted;
+                // The C vertex a root becomes (the radial curvature included).
+                const auto contourVertex = [&](const Preimage& p) {
+                    MeshVertex v = m.evaluate(p);
+                    v.label = VertexLabel::Contour;
+                    v.provenance = Provenance::Inserted;
+                    return v;
+                };
+                root = contourVertex(root->preimage);
                 // Snap rule: shift an endpoint onto the root when it is within
                 // snap-fraction of the edge length and shiftable (appendix C).
                 const double length = (m.vertex(x).position - m.vertex(y).position).norm();
@@ -161,9 +166,7 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
                     unconverged -= !converged;
                     converged = other.outcome == BisectionOutcome::Converged;
                     unconverged += !converged;
-                    root = m.evaluate(other.best->preimage);
-                    root->label = VertexLabel::Contour;
-                    root->provenance = Provenance::Inserted;
+                    root = contourVertex(other.best->preimage);
                 }
                 if (!keeps && snapOnto(1.0)) {
                     ++snappedAgainstFolds;
@@ -187,8 +190,9 @@ void runContourInsertion(const PhaseContext& ctx, Snapshot& s) {
     if (foldingSplits > 0)
         s.notes.push_back(std::to_string(foldingSplits) +
                           " C vertices split an FB edge although a new face is folded in "
-                          "parameter space (appendix B) and neither endpoint could be shifted "
-                          "onto the root");
+                          "parameter space or has no common chart (appendix B), in every "
+                          "common chart of the edge's ends, and neither endpoint could be "
+                          "shifted onto the root");
     if (unconverged > 0)
         s.notes.push_back(std::to_string(unconverged) +
                           " roots did not reach |g| <= root-tolerance within root-max-iterations "
